@@ -27,7 +27,6 @@ from __future__ import annotations
 import argparse
 import contextlib
 import io
-import os
 import resource
 import subprocess
 import sys
@@ -36,22 +35,10 @@ import time
 import warnings
 from pathlib import Path
 
+from cpu_timing import best_cpu_s, load_average
+
 ROOT = Path(__file__).resolve().parents[1]
 PAIRS = ("hypoid_11x41_rear_axle", "iso23509_f3", "iso23509_f2_spiral_bevel")
-
-
-def _best(fn, repeat: int) -> tuple[float, object]:
-    """``(best CPU s, last result)`` of ``repeat`` calls of ``fn``."""
-    best, got = float("inf"), None
-    for _ in range(repeat):
-        c0 = time.process_time()
-        got = fn()
-        best = min(best, time.process_time() - c0)
-    return best, got
-
-
-def _load() -> str:
-    return " ".join(f"{x:.2f}" for x in os.getloadavg())
 
 
 def main() -> None:
@@ -64,7 +51,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=3)
     args = ap.parse_args()
-    print(f"load average {_load()}")
+    print(f"load average {load_average()}")
     print("| pair | load check CPU s (reused gear box) | design's check of the same flanks "
           "CPU s | verdict equal | `tca` CPU s in process / console | share of a `tca` in "
           "process / console |")
@@ -77,11 +64,11 @@ def main() -> None:
             loaded = check_settings(pair)
             boxes = check_generation(pair)
             completed_settings(pair, loaded, boxes, warn=False)      # warm
-            load_s, done = _best(lambda: completed_settings(pair, loaded, boxes, warn=False),
+            load_s, done = best_cpu_s(lambda: completed_settings(pair, loaded, boxes, warn=False),
                                  args.repeat)
-            shape_s, design = _best(
+            shape_s, design = best_cpu_s(
                 lambda: check_settings(pair, easeoff_generated=True).easeoff, args.repeat)
-            blank_s, _ = _best(lambda: check_settings(pair), args.repeat)
+            blank_s, _ = best_cpu_s(lambda: check_settings(pair), args.repeat)
             equal = done.easeoff.flanks == design.flanks and done.easeoff.missing == {}
             path = Path(tmp) / f"{name}.toml"
             path.write_text(pair_to_toml(pair))
@@ -104,7 +91,7 @@ def main() -> None:
             print(f"| {name} | {load_s:.3f} | {shape_s - blank_s:.3f} | {equal} | "
                   f"{tca_s:.2f} / {console_s:.2f} | {load_s / tca_s:.1%} / "
                   f"{load_s / console_s:.1%} |", flush=True)
-    print(f"load average {_load()}")
+    print(f"load average {load_average()}")
 
 
 if __name__ == "__main__":

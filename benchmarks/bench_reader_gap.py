@@ -39,7 +39,6 @@ import argparse
 import contextlib
 import importlib
 import io
-import os
 import sys
 import tempfile
 import time
@@ -48,6 +47,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_settings_gap import FAMILY, family_pair  # noqa: E402
+
+from cpu_timing import load_average
 
 #: Each reading command: its argv after ``--pair FILE --out DIR``, whether it runs a TCA
 #: of the pair, and where its analysis starts (module, name) for a stopped run.
@@ -113,10 +114,6 @@ def run_command(command: str, pair_file: Path, out: Path, *, stop: bool):
     return code, text, time.process_time() - c0
 
 
-def _load() -> str:
-    return " ".join(f"{x:.2f}" for x in os.getloadavg())
-
-
 def main() -> None:
     from gearcontact.geometry.basic_settings import standard_machine_pair
     from gearcontact.geometry.gear_generation import generation_of
@@ -141,7 +138,7 @@ def main() -> None:
     rows = [r for r in FAMILY if r[7] < 0.85 and (r[8] or not args.gapped)
             and not (r[8] and args.gap_free)][:args.first][start:stop][i::n]
     chosen = list(COMMANDS) if args.commands is None else args.commands.split(",")
-    print(f"load average {_load()}")
+    print(f"load average {load_average()}")
     names = list(COMMANDS)
     print("| z1/z2 | E | face | beta | alpha | k_d | eps_p | gap (doc) | "
           + " | ".join(names) + " |")
@@ -186,7 +183,7 @@ def main() -> None:
             z1, z2, E, face, beta, alpha, kd = spec[:7]
             print(f"| {z1}/{z2} | {E} | {face} | {beta} | {alpha} | {kd} | {spec[7]:.3f} | "
                   f"{'gap' if spec[8] else '-'} | " + " | ".join(cells) + " |", flush=True)
-    print(f"load average {_load()}")
+    print(f"load average {load_average()}")
     for (command, kind), (good, bad) in sorted(tally.items()):
         print(f"{command:14s} {kind:9s} as expected {good}, not {bad}")
 

@@ -18,11 +18,11 @@ Usage::
 from __future__ import annotations
 
 import argparse
-import os
 import tempfile
-import time
 import warnings
 from pathlib import Path
+
+from cpu_timing import best_cpu_s, load_average
 
 ROOT = Path(__file__).resolve().parents[1]
 F2 = ROOT / "examples" / "machine_settings" / "iso23509_f2_machine.toml"
@@ -32,19 +32,6 @@ SLIPS = (("gear MD -0.24", "machine_centre_to_back_mm = 0.0",
          ("pinion sliding base sign", "sliding_base_mm = 2.2936", "sliding_base_mm = -2.2936"),
          ("pinion ratio of roll typed cradle / work", "ratio_of_roll = 2.785714",
           "ratio_of_roll = 0.358974"))
-
-
-def _best(fn, repeat: int) -> float:
-    best = float("inf")
-    for _ in range(repeat):
-        c0 = time.process_time()
-        fn()
-        best = min(best, time.process_time() - c0)
-    return best
-
-
-def _load() -> str:
-    return " ".join(f"{x:.2f}" for x in os.getloadavg())
 
 
 def main() -> None:
@@ -58,7 +45,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=3)
     args = ap.parse_args()
-    print(f"load average {_load()}")
+    print(f"load average {load_average()}")
     print("| slip (a warning) | blank comparison CPU s | ease-off shape CPU s |")
     print("|---|---:|---:|")
     text = F2.read_text()
@@ -70,19 +57,19 @@ def main() -> None:
             path.write_text(text.replace(right, wrong, 1))
             pair = load_pair(path)
             check_easeoff_shape(pair)                                   # warm
-            blank = _best(lambda: check_pair_blank(
-                pair, measured=measure_pair_mean_points(pair)), args.repeat)
-            shape = _best(lambda: check_easeoff_shape(pair), args.repeat)
+            blank = best_cpu_s(lambda: check_pair_blank(
+                pair, measured=measure_pair_mean_points(pair)), args.repeat)[0]
+            shape = best_cpu_s(lambda: check_easeoff_shape(pair), args.repeat)[0]
             print(f"| {name} | {blank:.2f} | {shape:.2f} |", flush=True)
         pair = standard_machine_pair(load_pair(ROOT / "examples" / "iso23509_f3.toml"),
                                      gear_generation="generated")
         check_settings(pair, easeoff_generated=True)                    # warm
-        deferred = _best(lambda: check_settings(pair), args.repeat)
-        library = _best(lambda: checked_settings(pair), args.repeat)
-        design = _best(lambda: check_settings(pair, easeoff_generated=True), args.repeat)
+        deferred = best_cpu_s(lambda: check_settings(pair), args.repeat)[0]
+        library = best_cpu_s(lambda: checked_settings(pair), args.repeat)[0]
+        design = best_cpu_s(lambda: check_settings(pair, easeoff_generated=True), args.repeat)[0]
     print(f"F.3, generated gear: deferred {deferred:.2f} s, checked_settings {library:.2f} s, "
           f"design's {design:.2f} s CPU")
-    print(f"load average {_load()}")
+    print(f"load average {load_average()}")
 
 
 if __name__ == "__main__":

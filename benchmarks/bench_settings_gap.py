@@ -21,11 +21,12 @@ before and after); CPU seconds are the fairer figures.
 from __future__ import annotations
 
 import argparse
-import os
 import tempfile
 import time
 import warnings
 from pathlib import Path
+
+from cpu_timing import load_average
 
 #: The family (docs/machine_settings.md sec. 5): (z1, z2, offset E mm, gear face mm,
 #: pinion spiral angle deg, pressure angle of both sides deg, working depth factor,
@@ -122,10 +123,6 @@ def family_pair(spec, directory: Path):
     return load_pair(path)
 
 
-def _load() -> str:
-    return " ".join(f"{x:.2f}" for x in os.getloadavg())
-
-
 def main() -> None:
     from gearcontact.geometry.basic_settings import standard_machine_pair
     from gearcontact.geometry.contact_path import path_contact_ratio
@@ -138,7 +135,7 @@ def main() -> None:
     ap.add_argument("--all", action="store_true", help="also the pairs at eps_p >= 0.85")
     args = ap.parse_args()
     rows = [r for r in FAMILY if args.all or r[7] < 0.85]
-    print(f"load average {_load()}")
+    print(f"load average {load_average()}")
     print("| z1/z2 | E | face | beta | alpha | k_d | eps_p | doc gap | check CPU s (path) | design "
           "| gap steps of 120 / 60 / 30 / 15 |")
     print("|" + "---|" * 11)
@@ -177,7 +174,7 @@ def main() -> None:
             print(f"| {z1}/{z2} | {E} | {face} | {beta} | {alpha} | {kd} | {eps:.3f} | "
                   f"{'gap' if spec[8] else '-'} | {seconds:.2f} ({path_s:.2f}) | {verdict} | {widths} |",
                   flush=True)
-    print(f"load average {_load()}")
+    print(f"load average {load_average()}")
     print(tally)
     if len(cpu) > 1:
         rest = sorted(cpu[1:])
