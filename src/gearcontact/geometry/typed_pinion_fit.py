@@ -141,8 +141,10 @@ class ConjugateFit:
                 f"max {self.max_um:.3f} um, RMS {self.rms_um:.3f} um over the flank (bound "
                 f"{RESIDUAL_BOUND_UM:g} um"
                 + ("" if self.stage == 1 else f"; every setting fitted, stage {self.stage}")
-                + f"); TE0 p-p bound {self.te_bound_arcsec:.3f} arcsec "
-                f"(uncrowned, first order, on the contact lines); the reversed-motion pinion was "
+                + f"); TE0 p-p bound (uncrowned, first order) {self.te_bound_arcsec:.3f} "
+                f"arcsec on the contact lines while contact stays within the conjugate's "
+                f"box, {self.te_bound_flank_arcsec:.3f} arcsec flank-wide; the reversed-motion "
+                f"pinion was "
                 f"{self.seed_max_um:.2f} um off"
                 + (" where it reached the conjugate's flank" if self.seed_trimmed else ""))
 
