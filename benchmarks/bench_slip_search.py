@@ -8,7 +8,7 @@ Deterministic counts first: the least-squares solves of the check
 the known-slip search (``single_slip`` / ``pair_slip``) and of the single-key search
 (``slip_attribution``); then CPU seconds of the check (one process, one BLAS thread
 asked for through the environment), with the load average before and after. Both
-variants must give the same :class:`~gearcontact.geometry.blank_check.BlankCheck`
+variants must give the same :class:`~gearcontact.geometry.blank_verdict.BlankCheck`
 (compared with ``==`` here; tests/geometry/test_slip_screen.py asserts it on
 documented cases).
 

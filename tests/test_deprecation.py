@@ -47,6 +47,8 @@ KEPT = {
     # one phase's solve moved to gearcontact.ltca.lte_phase (lte.py past 600 lines)
     "gearcontact.ltca.lte": {"ACTIVE_SHARE", "check_loaded", "preview_balance",
                              "solve_phase"},
+    # the verdict's types moved to gearcontact.geometry.blank_verdict (past 600 lines)
+    "gearcontact.geometry.blank_check": {"BlankCheck", "Comparison", "FlankCheck"},
 }
 
 

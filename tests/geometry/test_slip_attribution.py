@@ -17,7 +17,8 @@ import math
 
 import pytest
 
-from gearcontact.geometry.blank_check import Comparison, check_flanks, check_pair_blank
+from gearcontact.geometry.blank_check import check_flanks, check_pair_blank
+from gearcontact.geometry.blank_verdict import Comparison
 from gearcontact.geometry.blank_statement import stated_blank
 from gearcontact.geometry.pair import load_pair
 from gearcontact.geometry.slip_attribution import describe, explaining_values

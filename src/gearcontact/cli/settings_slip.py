@@ -19,7 +19,7 @@ __all__ = ["slip_renamed", "checked_blank_named", "checked_typed_gear", "work_sl
 
 def slip_renamed(exc: InputRangeError, check, *, failed: str) -> InputRangeError:
     """``exc`` (raised by the work ``failed`` names) renamed to the likely slip of the
-    first flank of ``check`` (a :class:`~gearcontact.geometry.blank_check.BlankCheck`)
+    first flank of ``check`` (a :class:`~gearcontact.geometry.blank_verdict.BlankCheck`)
     that does not agree with its blank: its key and value as typed, else its table.
     ``exc`` unchanged where every flank agrees, or where ``exc`` names a key of the check
     already (its own refusal of a gross mismatch)."""
@@ -78,7 +78,7 @@ def checked_typed_gear(pair, gear: dict):
     (:func:`~gearcontact.geometry.blank_check.check_flanks`; a ``[print.gear]`` against
     its page's printed blank), its warnings on stderr, a gross mismatch an input error
     naming the likely key (exit 2); returns the
-    :class:`~gearcontact.geometry.blank_check.BlankCheck` (what :func:`slip_renamed`
+    :class:`~gearcontact.geometry.blank_verdict.BlankCheck` (what :func:`slip_renamed`
     names when the derivation fails). The pair's own check cannot see this gear: its
     tables are replaced before it runs (``design.check``), and a gear typed alone has no
     pinion to check beside it (docs/machine_settings.md sec. 2 and 5)."""

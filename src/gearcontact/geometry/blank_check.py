@@ -52,23 +52,23 @@ from __future__ import annotations
 
 import dataclasses
 import re
-from dataclasses import dataclass
 
 from ..validation import InputRangeError
 from .blank_statement import StatedBlank, printed_stated_blank, stated_blank
+from .blank_verdict import GROSS_FACE_QUANTITY, BlankCheck, Comparison, FlankCheck
 from .conjugate import UndercutError
 from .flank_angles import (FlankMeanPoint, GeneratingGearAngles, generating_circle,
                            measure_generating_angles, measure_mean_point, require_machine)
 from ..deprecation import moved_names
-from .known_slips import pair_slip, single_slip, slip_fix, with_slip
+from .known_slips import pair_slip, single_slip
 from .machine import MachineSetup
 from .print_blank import print_key
-from .slip_attribution import describe, explaining_values, interval
+from .slip_attribution import explaining_values
 from .typed_settings import attributed_keys, full_key, moved, roundings, setting
 
 __all__ = ["GROSS_CONE_FACE_FRACTION", "GROSS_PRESSURE_DEG", "GROSS_SPIRAL_DEG", "PINION_PRESSURE_DEG",
            "PITCH_POINT_FRACTION", "ROOT_DATUM_FRACTION", "SCREEN_MARGIN",
-           "BlankCheck", "Comparison", "FlankCheck", "check_flanks", "check_pair_blank"]
+           "check_flanks", "check_pair_blank"]
 __getattr__ = moved_names(__name__, {
     "typed_resolution": "gearcontact.geometry.typed_settings:typed_resolution",
     **{n: f"gearcontact.geometry.known_slips:{n}" for n in ("INCH_MM", "SLIPS", "UNIT_SLIPS")}})
@@ -117,178 +117,7 @@ GROSS_CONE_FACE_FRACTION = 0.5
 #: "The cost of the slip search").
 SCREEN_MARGIN = 1e-9
 _GROSS = {"spiral angle": GROSS_SPIRAL_DEG, "pressure angle": GROSS_PRESSURE_DEG}
-_GROSS_FACE = "mean cone distance"     # gross: GROSS_CONE_FACE_FRACTION of the gear face
 _FLOOR = 1e-7                     # the solve's resolution, deg / mm (flank_angles)
-
-
-@dataclass(frozen=True)
-class Comparison:
-    """One measured value against the stated one: ``quantity``, ``unit``, ``measured``,
-    ``stated``, ``tolerance`` (None for the hand) and ``within``; ``gross_bound``: the
-    difference beyond which the flank is not the blank's tooth (an input error,
-    :attr:`gross`), None where there is none."""
-
-    quantity: str
-    unit: str
-    measured: float | str
-    stated: float | str
-    tolerance: float | None
-    gross_bound: float | None = None
-
-    @property
-    def within(self) -> bool:
-        if self.tolerance is None:
-            return self.measured == self.stated
-        return abs(self.measured - self.stated) <= self.tolerance
-
-    @property
-    def gross(self) -> bool:
-        """Outside: a hand against the blank's, a value off by more than
-        :attr:`gross_bound`."""
-        if self.within:
-            return False
-        return self.tolerance is None or (self.gross_bound is not None and abs(
-            self.measured - self.stated) > self.gross_bound)
-
-
-@dataclass(frozen=True)
-class FlankCheck:
-    """One flank: its comparisons, ``missing`` (why there are none: the flank does not
-    reach its mean point, "" otherwise), ``slip`` (the key of the sign slip under which
-    it agrees best, "" when none or when it agrees), ``slip_value``, ``slip_word`` and
-    ``slip_also`` (the keys of the other slips under which it agrees, best first);
-    ``single_keys``: where no known slip explains it, the keys that alone do, with the
-    values the blank needs (:class:`~.slip_attribution.KeyValue`, ranked); ``printed``:
-    the flank's settings were converted from ``[print.gear]`` and compared with the
-    page's printed blank (:func:`~.blank_statement.printed_stated_blank`), its keys the
-    print's; ``typed``: where neither a slip nor a single key explains it, its typed keys and
-    values ``((full key, value), ...)``, what a refusal names."""
-
-    member: str
-    side: str
-    comparisons: tuple
-    missing: str = ""
-    slip: str = ""
-    slip_value: float | str | None = None
-    slip_word: str = ""
-    slip_also: tuple = ()
-    single_keys: tuple = ()
-    printed: bool = False
-    typed: tuple = ()
-
-    @property
-    def agrees(self) -> bool:
-        return not self.missing and all(c.within for c in self.comparisons)
-
-    @property
-    def gross(self) -> bool:
-        """The hand against the blank's, a spiral angle off by more than
-        :data:`GROSS_SPIRAL_DEG`, a pressure angle by more than :data:`GROSS_PRESSURE_DEG`
-        or a gear's mean cone distance by more than :data:`GROSS_CONE_FACE_FRACTION` of
-        the face (:attr:`Comparison.gross`)."""
-        return any(c.gross for c in self.comparisons)
-
-
-@dataclass(frozen=True)
-class BlankCheck:
-    """All flanks (:class:`FlankCheck`); ``hand_slip``: every flank agrees once the
-    stated hand is the other (the key then is ``stated.hand_key``)."""
-
-    flanks: tuple
-    stated: StatedBlank
-    hand_slip: bool = False
-
-    @property
-    def agrees(self) -> bool:
-        return all(f.agrees for f in self.flanks)
-
-    @property
-    def gross(self) -> bool:
-        return any(f.gross for f in self.flanks)
-
-    def raise_if_gross(self) -> None:
-        """:class:`~gearcontact.validation.InputRangeError` naming the likely key for a
-        gross mismatch (module docstring), else nothing."""
-        if not self.gross:
-            return
-        bad = [f for f in self.flanks if f.gross]
-        what = "; ".join(f"{f.member} {f.side}: {_describe(f)}" for f in bad)
-        if self.hand_slip:
-            raise InputRangeError(self.stated.hand_key, self.stated.hand_value,
-                                  f"the hand the machine settings cut ({what}; every flank "
-                                  "agrees with the other hand, docs/machine_settings.md "
-                                  "sec. 2)")
-        f = next((f for f in bad if f.slip), bad[0])
-        if f.slip:
-            also = [g.slip for g in bad if g.slip and g is not f]
-            raise InputRangeError(f.slip, f.slip_value,
-                                  f"the {slip_fix(f.slip_word)} that cuts {_blank(f)}'s "
-                                  f"tooth ({what}; {with_slip(f.slip_word)} the flank agrees "
-                                  f"with {_blank(f)}" + _also(f)
-                                  + (f"; also {', '.join(also)}" if also else "")
-                                  + ", docs/machine_settings.md sec. 2)")
-        one = f.single_keys[0] if f.single_keys else None
-        table = "print.gear" if f.printed else f"machine.{f.member}.{f.side}"
-        raise InputRangeError(one.key if one else f"[{table}]",
-                              one.typed if one else dict(f.typed),
-                              (f"{interval(one)} (this key alone moved), or " if one else "")
-                              + f"settings that cut {_blank(f)}'s tooth ({what}; no known sign "
-                              "or unit slip explains it" + "".join(
-                                  f"; {g.member} {g.side}: {describe(g.single_keys)}"
-                                  for g in bad if not g.missing)
-                              + ", docs/machine_settings.md sec. 2)")
-
-    def warnings(self) -> list[str]:
-        """One line per flank outside its tolerance, naming the likely key."""
-        out = []
-        for f in self.flanks:
-            if f.agrees:
-                continue
-            key = self.stated.hand_key if self.hand_slip else f.slip
-            word = "hand" if self.hand_slip else f.slip_word
-            hint = (f"; likely {key} ({with_slip(word)} the flank agrees)" if key
-                    else "; no known sign or unit slip explains it" + (
-                        "" if f.missing else f"; {describe(f.single_keys)}"))
-            if key and not self.hand_slip:
-                hint += _also(f)
-            table = "print.gear" if f.printed else f"machine.{f.member}.{f.side}"
-            out.append(f"warning: the {f.member} {f.side} flank cut from [{table}] does not "
-                       f"agree with {_blank(f)}: {_describe(f)}{hint} "
-                       "(docs/machine_settings.md sec. 2)")
-        return out
-
-
-def _also(f: FlankCheck) -> str:
-    """``"; it agrees as well with the other sign of <keys>"`` (the slips of two keys:
-    ``"with the slips of <key> and <key>, ..."``), or ""."""
-    if not f.slip_also:
-        return ""
-    what = "slips of" if f.slip_word.startswith("with ") else "other sign of"
-    return f"; it agrees as well with the {what} {', '.join(f.slip_also)}"
-
-
-def _blank(f: FlankCheck) -> str:
-    """What ``f`` was compared with: ``"the blank"`` or (a gear typed as a print) ``"the
-    printed blank"``."""
-    return "the printed blank" if f.printed else "the blank"
-
-
-def _describe(f: FlankCheck) -> str:
-    if f.missing:
-        return f.missing
-    return ", ".join(
-        f"{c.quantity} {c.measured}, {_blank(f)}'s {c.stated}" if c.tolerance is None else
-        f"{c.quantity} {c.measured:.4f} {c.unit}, {_blank(f)}'s {c.stated:.4f} (tolerance "
-        f"{c.tolerance:.2g}{_off_face(c)})" for c in f.comparisons if not c.within)
-
-
-def _off_face(c: Comparison) -> str:
-    """``"; off the gear's face, <from> to <to> mm"`` for a gross mean cone distance, else
-    ""."""
-    if c.quantity != _GROSS_FACE or not c.gross:
-        return ""
-    return (f"; off the gear's face, {c.stated - c.gross_bound:.4f} to "
-            f"{c.stated + c.gross_bound:.4f} {c.unit}")
 
 
 def _values(setup: MachineSetup, stated: StatedBlank, start=None) -> tuple[dict, object]:
@@ -445,7 +274,7 @@ def _compare(setup, stated, tol=None, hand=None, measured: FlankMeanPoint | None
 
 def _gross_bound(quantity: str, stated: StatedBlank) -> float | None:
     """The :attr:`Comparison.gross_bound` of ``quantity`` against ``stated``."""
-    if quantity == _GROSS_FACE:
+    if quantity == GROSS_FACE_QUANTITY:
         face = stated.gear_face_width_mm
         return None if face is None else GROSS_CONE_FACE_FRACTION * face
     return _GROSS.get(quantity)

@@ -34,7 +34,8 @@ import time
 import warnings
 from dataclasses import dataclass, field
 
-from .blank_check import BlankCheck, check_pair_blank
+from .blank_check import check_pair_blank
+from .blank_verdict import BlankCheck
 from .easeoff_shape import EaseOffShapeCheck, check_easeoff_shape
 from .edge_check import check_edge_rounds
 from .flank_angles import measure_pair_mean_points
@@ -58,7 +59,7 @@ class SettingsCheck:
         Every flank's comparison with the blank (:func:`~.blank_check.check_pair_blank`).
     warnings : tuple of str
         One line per flank outside its tolerance, naming the likely key
-        (:meth:`~.blank_check.BlankCheck.warnings`, each ``"warning: ..."``); empty when
+        (:meth:`~.blank_verdict.BlankCheck.warnings`, each ``"warning: ..."``); empty when
         every flank agrees (a hollow pinion flank's lines are
         :attr:`hollow_warnings`).
     seconds : float
@@ -127,7 +128,7 @@ def check_settings(pair, *, measured=None, easeoff_generated: bool = False,
     ------
     InputRangeError
         A gross mismatch, naming the likely key
-        (:meth:`~.blank_check.BlankCheck.raise_if_gross`); a blade edge round that ends
+        (:meth:`~.blank_verdict.BlankCheck.raise_if_gross`); a blade edge round that ends
         above its flank's mean point (:func:`~.edge_check.check_edge_rounds`). The
         ease-off shape is measured after both (a flank it cannot measure is named in
         its ``missing``, never raised).

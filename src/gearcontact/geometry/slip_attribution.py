@@ -223,7 +223,7 @@ def explaining_values(candidates: Sequence[tuple[str, float, float]], rows0,
         The flank's typed keys: the full name, the value as typed and its typed
         rounding.
     rows0 : sequence of Comparison
-        The flank's comparisons as typed (:class:`.blank_check.Comparison`: ``measured``,
+        The flank's comparisons as typed (:class:`.blank_verdict.Comparison`: ``measured``,
         ``stated``, ``tolerance``); at least one outside its tolerance.
     compare : callable
         ``compare(key, value)``: the flank's comparisons with ``key`` set to ``value``

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import sys
 
-from ..geometry.blank_check import BlankCheck
+from ..geometry.blank_verdict import BlankCheck
 from ..geometry.easeoff_shape import EaseOffShapeCheck
 from ..geometry.settings_check import SettingsCheck, check_settings
 from ..geometry.flank_angles import FlankMeanPoint
