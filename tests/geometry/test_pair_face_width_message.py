@@ -43,3 +43,41 @@ def test_a_pinion_face_too_wide_names_no_unit():
     text = str(err.value)
     assert "[30, 90] mm (from design.gear_face_width_mm = 30 to 3 times it)" in text
     assert "inches" not in text
+
+
+F2 = Path(__file__).parents[2] / "examples" / "iso23509_f2_spiral_bevel.toml"
+
+
+def _f2_with(**design) -> dict:
+    data = tomllib.loads(F2.read_text())
+    data["design"].update(design)
+    return data
+
+
+@pytest.mark.parametrize("typed, unit", [
+    # F.2's 81.273 mm typed as 3.2 (in) and as 0.08127 (m); x 25.4 and x 1000 are exact
+    # arithmetic on the typed numbers (81.28, 81.27 mm), the face 25.4 mm 0.31 of either
+    (3.2, "inches? x 25.4 = 81.28 mm fits"),
+    (0.08127, "metres? x 1000 = 81.27 mm fits"),
+])
+def test_a_cone_distance_typed_in_another_unit_is_named(typed, unit):
+    """The gear mean cone distance in inches or metres was refused naming
+    design.gear_face_width_mm alone, a key typed right (session 27, helper checks): both
+    keys are named, the cone distance with the unit that fits."""
+    with pytest.raises(InputRangeError) as err:
+        parse_pair(_f2_with(gear_mean_cone_distance_mm=typed))
+    assert err.value.field == ("design.gear_face_width_mm / "
+                               "design.gear_mean_cone_distance_mm")
+    assert err.value.value == (25.4, typed)
+    assert f"design.gear_mean_cone_distance_mm typed in {unit}" in str(err.value)
+
+
+def test_a_face_wider_than_a_cone_distance_typed_right_names_no_unit():
+    """Face 90 mm on F.2's 81.273 mm: both keys named, no unit hint (90 mm is below 0.1
+    of the cone distance in inches, 2064 mm, and above 0.5 of it in mm)."""
+    with pytest.raises(InputRangeError) as err:
+        parse_pair(_f2_with(gear_face_width_mm=90.0, pinion_face_width_mm=90.0))
+    text = str(err.value)
+    assert "design.gear_face_width_mm / design.gear_mean_cone_distance_mm" in text
+    assert "81.27 mm from design.gear_mean_cone_distance_mm = 81.273" in text
+    assert "typed in" not in text

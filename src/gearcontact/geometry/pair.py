@@ -129,7 +129,8 @@ from .kinematics import AssemblyErrors, MeshKinematics
 from .machine import (BLADE_KEYS, HELICAL_KEYS, MACHINE_KEYS, MEMBERS, MODIFIED_ROLL_KEYS,
                       setup_from_tables, setup_to_tables)
 from .print_blank import cuts_the_printed_gear
-from .pair_tables import CutterSpec, EaseOffCoefficients, check_pinion_face
+from .pair_tables import (CutterSpec, EaseOffCoefficients, check_face_within_cone,
+                          check_pinion_face)
 from .print_table import (check_print_blank, print_gear_tables, printed_key_error,
                           printed_toml_lines, split_print)
 from .toml_tables import FLOAT, INT, MATERIAL_SCHEMA, STR, check_tables, materials_of
@@ -244,10 +245,10 @@ class GearPair:
         check_pinion_face(self.pinion_face_width_mm, self.gear_face_width_mm)
         # the design itself is validated eagerly so that a bad pair fails on load
         blank = self.blank
-        if self.gear_face_width_mm >= blank.mean_cone_distance_gear_mm:
-            raise InputRangeError("design.gear_face_width_mm", self.gear_face_width_mm,
-                                  f"(0, {blank.mean_cone_distance_gear_mm:.3f}) mm "
-                                  "(less than the gear mean cone distance)")
+        size = ("gear_mean_pitch_radius_mm" if self.gear_mean_cone_distance_mm is None
+                else "gear_mean_cone_distance_mm")
+        check_face_within_cone(self.gear_face_width_mm, blank.mean_cone_distance_gear_mm,
+                               size_key=f"design.{size}", size_value=getattr(self, size))
         land = gear_top_land_mm(blank, self.cutter.point_width_mm)
         if land <= 0.0:
             # the point width that leaves a zero top land, else the working depth

@@ -72,6 +72,24 @@ class EaseOffCoefficients:
         return all(getattr(self, n) == 0.0 for n in self.__dataclass_fields__)
 
 
+def check_face_within_cone(face_mm: float, cone_mm: float, *, size_key: str,
+                           size_value: float) -> None:
+    """The gear face width less than the gear mean cone distance ``cone_mm`` (derived from
+    the typed ``size_key = size_value``), else an :class:`InputRangeError` naming both keys
+    (either may be the slip), with the unit a size typed in inches or metres would have
+    needed: where the face is 0.1 to 0.5 of the converted cone distance (a plausible
+    bevel blank; ISO 23509's keep the face near 0.3 of the cone distance), so that a
+    face too wide for a cone distance typed right gets no unit hint."""
+    if face_mm < cone_mm:
+        return
+    unit = next((f"; {size_key} typed in {name}? x {k:g} = {k * size_value:.4g} mm fits"
+                 for name, k in (("inches", INCH_MM), ("metres", 1000.0))
+                 if 0.1 * k * cone_mm <= face_mm <= 0.5 * k * cone_mm), "")
+    raise InputRangeError(f"design.gear_face_width_mm / {size_key}", (face_mm, size_value),
+                          f"a gear face width less than the gear mean cone distance, "
+                          f"{cone_mm:.4g} mm from {size_key} = {size_value:g}{unit}")
+
+
 def check_pinion_face(pinion_mm: float, gear_mm: float) -> None:
     """The pinion face width within [F2, 3 F2], the range named with the gear face width
     it comes from (and a gear face typed in inches named so: the pinion's then fits
