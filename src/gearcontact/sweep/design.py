@@ -26,7 +26,7 @@ from ..geometry.pair import CYLINDRICAL, CutterSpec, EaseOffCoefficients
 from ..validation import InputRangeError
 from .cylindrical import CYLINDRICAL_KEYS
 from .settings_keys import (SETTING_KEYS, build_setting_variant, setting_keys_text,
-                            warning_lines, with_settings)
+                            unit_by_suffix, warning_lines, with_settings)
 
 __all__ = ["DESIGN_KEYS", "Variant", "build_variant", "check_variants", "design_key",
            "design_unit", "easeoff_only", "vary_design"]
@@ -54,10 +54,7 @@ def design_key(key: str) -> str | None:
 
 def design_unit(key: str) -> str:
     """Unit of a design key, from its name (the TOML keys carry their unit)."""
-    for suffix, unit in _UNIT_SUFFIXES:
-        if key.endswith(suffix):
-            return unit
-    raise ValueError(f"no unit in the design key {key!r}")
+    return unit_by_suffix(key, _UNIT_SUFFIXES, what="design")
 
 
 def easeoff_only(keys) -> bool:

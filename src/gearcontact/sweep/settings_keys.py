@@ -35,8 +35,8 @@ from ..geometry.pair import pair_to_toml, parse_pair
 from ..geometry.print_blank import cuts_the_printed_gear
 
 __all__ = ["BLADE_TABLE_KEYS", "MACHINE_TABLE_KEYS", "SETTING_KEYS", "build_setting_variant",
-           "setting_keys", "setting_keys_text", "setting_unit", "unknown_setting_key",
-           "warning_lines", "with_settings"]
+           "setting_keys", "setting_keys_text", "setting_unit", "unit_by_suffix",
+           "unknown_setting_key", "warning_lines", "with_settings"]
 
 #: Numeric keys of a ``[machine.<member>.<flank>]`` table (the printed series spelt out).
 MACHINE_TABLE_KEYS = (*MACHINE_KEYS, *MODIFIED_ROLL_KEYS, *HELICAL_KEYS)
@@ -55,13 +55,20 @@ _UNITS = (("_mm_per_rad2", "mm/rad^2"), ("_mm_per_rad", "mm/rad"), ("_per_rad4",
           ("ratio_of_roll", "1"))
 
 
+def unit_by_suffix(key: str, suffixes, *, what: str) -> str:
+    """Unit of ``key`` from the end of its name (``suffixes``: ``(suffix, unit)`` pairs,
+    longest first; the TOML keys carry their unit); ``what`` names the kind of key in
+    the error."""
+    for suffix, unit in suffixes:
+        if key.endswith(suffix):
+            return unit
+    raise ValueError(f"no unit in the {what} key {key!r}")
+
+
 def setting_unit(key: str) -> str:
     """Unit of a setting key (``machine.pinion.drive.tilt_deg`` -> ``deg``; the ratio
     of roll, work / cradle: ``1``)."""
-    for suffix, unit in _UNITS:
-        if key.endswith(suffix):
-            return unit
-    raise ValueError(f"no unit in the setting key {key!r}")
+    return unit_by_suffix(key, _UNITS, what="setting")
 
 
 def _members(pair) -> tuple[str, ...]:
