@@ -44,6 +44,7 @@ from .blade import blade_segments
 from .blank import BlankDesign
 from .conjugate import NODE_MARGIN_MM, UndercutError, nominal_pinion_box
 from .cutter import BladeCone, CutterPlacement
+from .flank_reuse import reused
 from .formate import FlankBoundary, FormateFlank, gear_flank
 from .kinematics import MeshKinematics
 from .generated_box import (LIMIT_FRACTION, active_box, edge_length_mm, edge_radius_bound_mm,
@@ -402,10 +403,11 @@ def generated_gear_flank(setup: MachineSetup, blank: BlankDesign, *, gear_face_w
     return _sheet_of(solver, box, mean, setup, n_u, n_v, GearSheet, node_box)
 
 
+@reused
 def generated_gear_box(setup: MachineSetup, blank: BlankDesign, *, gear_face_width_mm: float
                        ) -> tuple[EnvelopeSolver, FlankBoundary, EnvelopeSolution]:
     """The cheap first step of :func:`generated_gear_flank` (as
-    :func:`generated_pinion_box`)."""
+    :func:`generated_pinion_box`; reused as it is)."""
     _check_kind(setup, "inside" if setup.side == "drive" else "outside")
     setup = tip_setup(setup)
     cone = gear_cone(blank)
@@ -455,12 +457,16 @@ def _check_kind(setup: MachineSetup, want: str) -> None:
                               f"'{want}' (the {setup.member} {setup.side} flank is {shape})")
 
 
+@reused
 def generated_pinion_box(setup: MachineSetup, blank: BlankDesign, *,
                          pinion_face_width_mm: float
                          ) -> tuple[EnvelopeSolver, FlankBoundary, EnvelopeSolution]:
     """The envelope solver, the active box and the mean-node solution of the pinion flank
     ``setup`` generates: the cheap first step of :func:`generated_pinion_flank` (a few
     lengthwise sections, no grid), run by :func:`~.generation.check_generation`.
+    Within :func:`~.flank_reuse.reusing_flanks` a call with the same inputs is served
+    the box traced before (:func:`~.flank_reuse.reused`: the reader's check and the
+    flank's cut trace it once).
 
     Raises
     ------

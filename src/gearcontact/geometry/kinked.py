@@ -35,6 +35,7 @@ from numba import njit
 from scipy.interpolate import CubicSpline, PPoly
 
 from .blade import blade_segments
+from .flank_reuse import reused
 from .formate import FlankBoundary
 from .generated import (formate_gear_flank, gear_flank_of, generated_gear_box,
                         generated_gear_flank, generated_pinion_box, generated_pinion_flank)
@@ -344,6 +345,7 @@ def kinked_flank(pieces, names, *, v_scales=None, n_nodes: int = KINK_NODES) -> 
                        v_scales=v_scales)
 
 
+@reused
 def machine_flank(setup, blank, *, face_width_mm: float, n_u: int = 120, n_v: int = 150,
                   pinion_box: FlankBoundary | None = None):
     """The flank ``setup`` cuts on its member: :func:`~.generated.gear_flank_of` /
@@ -352,7 +354,9 @@ def machine_flank(setup, blank, *, face_width_mm: float, n_u: int = 120, n_v: in
     segment, all on the active box the tip segment traces (formate gear: the blade
     cones, the kink at the relief depth). ``pinion_box``: a pinion flank's active box
     when the caller holds it (:func:`~.generated.generated_pinion_box` of ``setup``,
-    which checks it), not traced again; the same flank, bit for bit."""
+    which checks it), not traced again; the same flank, bit for bit. Within
+    :func:`~.flank_reuse.reusing_flanks` a call with the same inputs is served the flank
+    cut before (:func:`~.flank_reuse.reused`)."""
     segs = blade_segments(setup.blade)
     gear = setup.member == "gear"
     if len(segs) == 1:

@@ -30,11 +30,13 @@ import dataclasses
 import difflib
 import tomllib
 
+from ..geometry.flank_reuse import FlankCache, reusing_flanks
 from ..geometry.machine import BLADE_KEYS, HELICAL_KEYS, MACHINE_KEYS, MEMBERS, MODIFIED_ROLL_KEYS
 from ..geometry.pair import pair_to_toml, parse_pair
 from ..geometry.print_blank import cuts_the_printed_gear
 
-__all__ = ["BLADE_TABLE_KEYS", "MACHINE_TABLE_KEYS", "SETTING_KEYS", "build_setting_variant",
+__all__ = ["BLADE_TABLE_KEYS", "MACHINE_TABLE_KEYS", "SETTING_KEYS", "VARIANT_FLANKS",
+           "build_setting_variant",
            "setting_keys", "setting_keys_text", "setting_unit", "unit_by_suffix",
            "unknown_setting_key", "warning_lines", "with_settings"]
 
@@ -48,6 +50,11 @@ SETTING_KEYS: dict[str, tuple[str, str, str, str]] = {
     f"{table}.{member}.{side}.{key}": (table, member, side, key)
     for table, keys in (("machine", MACHINE_TABLE_KEYS), ("blade", BLADE_TABLE_KEYS))
     for member in MEMBERS for side in _SIDES for key in keys}
+#: The flank work this process keeps between the setting variants it builds
+#: (:mod:`~gearcontact.geometry.flank_reuse`: each flank and active box by its exact
+#: inputs; per variant at most four flanks and four boxes, so the last three variants'
+#: worth, about 3 x 18 MB of flanks); None: every variant cut afresh.
+VARIANT_FLANKS: FlankCache | None = FlankCache(max_entries=24)
 #: Units by the end of a key's name, longest first (the TOML keys carry their unit).
 _UNITS = (("_mm_per_rad2", "mm/rad^2"), ("_mm_per_rad", "mm/rad"), ("_per_rad4", "1/rad^4"),
           ("_per_rad3", "1/rad^3"), ("_per_rad2", "1/rad^2"), ("_per_rad", "1/rad"),
@@ -165,8 +172,9 @@ def build_setting_variant(pair, design) -> tuple:
     """
     from ..tca.synthesis import prepare_pair
 
-    prepared = prepare_pair(with_settings(pair, design))
-    return prepared.pair, prepared.flank_set()
+    with reusing_flanks(VARIANT_FLANKS):
+        prepared = prepare_pair(with_settings(pair, design))
+        return prepared.pair, prepared.flank_set()
 
 
 def warning_lines(caught) -> tuple[str, ...]:
