@@ -12,7 +12,8 @@ cutter key rebuilds everything (the blank, the gear, the conjugate pinion). A va
 its limit) is the result of its cells, recorded by name like a wild assembly error.
 A pair cut from machine settings varies the keys of its ``[machine.*]`` / ``[blade.*]``
 tables instead (:mod:`.settings_keys`: each variant read and cut as the pair file with
-the values edited in).
+the values edited in, its unchanged flanks reused from the variants built before on
+that worker).
 """
 
 from __future__ import annotations

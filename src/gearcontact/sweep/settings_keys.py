@@ -20,6 +20,16 @@ variant that can be cut (a flank off its blank, a hollow pinion flank, pinion an
 not mates) are kept beside its results (``settings_warning``), as the commands print
 them beside theirs.
 
+The variants a process builds share the flank work their inputs share
+(:data:`VARIANT_FLANKS`, :mod:`~gearcontact.geometry.flank_reuse`): a variant is still
+read and prepared whole, but a flank (and a generated flank's active box) whose set-up
+(its member's and flank's ``[machine.*]`` and ``[blade.*]`` tables), blank, face width
+and node grid are those of a flank cut before is served that flank instead of being cut
+again. Only the flank itself is reused: what depends on its mate (the pinion's turn onto
+the design side's mean contact, the mean contacts) and every check of the pair are
+computed for each variant. The result is the fresh cut's bit for bit (tests: a pinion
+key, a gear key, and values one digit apart).
+
 A pair with a ``[print.gear]`` page cuts its gear from the print's words: only the
 pinion's keys vary (a gear key edited beside the print would not be read).
 """
@@ -162,8 +172,10 @@ def with_settings(pair, design) -> object:
 def build_setting_variant(pair, design) -> tuple:
     """``(prepared pair, flanks)`` of the variant ``design`` of ``pair``
     (:func:`with_settings`, then :func:`~gearcontact.tca.synthesis.prepare_pair` and its
-    flanks, as a pair command reads a file). The reader's warnings are emitted as it
-    emits them (:func:`warning_lines` keeps them for the store).
+    flanks, as a pair command reads a file), reusing the flanks of the variants built
+    before in this process whose inputs it shares (:data:`VARIANT_FLANKS`; module
+    docstring). The reader's warnings are emitted as it emits them (:func:`warning_lines`
+    keeps them for the store).
 
     Raises
     ------
