@@ -62,8 +62,9 @@ SETTING_KEYS: dict[str, tuple[str, str, str, str]] = {
     for member in MEMBERS for side in _SIDES for key in keys}
 #: The flank work this process keeps between the setting variants it builds
 #: (:mod:`~gearcontact.geometry.flank_reuse`: each flank and active box by its exact
-#: inputs; per variant at most four flanks and four boxes, so the last three variants'
-#: worth, about 3 x 18 MB of flanks); None: every variant cut afresh.
+#: inputs; per variant at most four flanks and four boxes, so at least the last three
+#: variants' worth; a generated flank is about 6 MB: at most about 140 MB); None: every
+#: variant cut afresh.
 VARIANT_FLANKS: FlankCache | None = FlankCache(max_entries=24)
 #: Units by the end of a key's name, longest first (the TOML keys carry their unit).
 _UNITS = (("_mm_per_rad2", "mm/rad^2"), ("_mm_per_rad", "mm/rad"), ("_per_rad4", "1/rad^4"),
