@@ -40,7 +40,7 @@ MACHINE_FLANK = "gearcontact.geometry.kinked.machine_flank"
 
 @pytest.mark.slow
 def test_reused_variants_are_the_fresh_cuts(tmp_path, monkeypatch):
-    """About 1 min at load 2."""
+    """About 90 s at load 16."""
     pair = load_pair(F2)
     grid = SweepGrid((parse_vary("machine.pinion.drive.modified_roll_2c_per_rad=0:0.01:2",
                                  pair=pair),
@@ -62,3 +62,34 @@ def test_reused_variants_are_the_fresh_cuts(tmp_path, monkeypatch):
     te = got["reused"]["te0_pp_arcsec"].values[..., 0]        # (2C, sliding base, E)
     assert (te[:, 0] != te[:, 1]).all()         # one digit apart: two results
     assert (te[0] != te[1]).all()
+
+
+@pytest.mark.slow
+def test_a_print_s_generated_gear_is_reused_for_a_pinion_key(monkeypatch):
+    """The published 10 x 41 hypoid print's pair (tests/geometry/summary_sheets; its
+    gear generated, cut from the [print.gear] page's words read for each variant): a
+    pinion tilt changed after the typed one cuts the pinion's drive flank alone, and the
+    flank set equals the variant's fresh cut (every field, :func:`exact_key`, whose
+    bit-exactness tests/geometry/test_flank_reuse.py tests). About 40 s at load 17."""
+    import warnings
+
+    from gearcontact.geometry.flank_reuse import exact_key
+    from gearcontact.sweep.settings_keys import build_setting_variant
+
+    path = Path(__file__).resolve().parents[1] / "geometry" / "summary_sheets" / \
+        "hypoid_10x41_no16_pair.toml"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")       # the print's datum and settings check
+        pair = load_pair(path)
+        tilt = next(s for s in pair.machine
+                    if (s.member, s.side) == ("pinion", "drive")).settings.tilt_deg
+        key = "machine.pinion.drive.tilt_deg"
+        cache = FlankCache()
+        monkeypatch.setattr(settings_keys, "VARIANT_FLANKS", cache)
+        build_setting_variant(pair, ((key, tilt),))
+        assert cache.misses[MACHINE_FLANK] == 4
+        _, got = build_setting_variant(pair, ((key, tilt + 0.1),))
+        assert cache.misses[MACHINE_FLANK] == 5
+        monkeypatch.setattr(settings_keys, "VARIANT_FLANKS", None)
+        _, fresh = build_setting_variant(pair, ((key, tilt + 0.1),))
+    assert exact_key(got) == exact_key(fresh)
