@@ -18,7 +18,10 @@ Truths (``==``, no tolerance):
    one);
 3. only the changed flanks are cut: 4 for the first variant, then one per changed
    (member, flank); E is an assembly error and cuts nothing (each variant built once
-   for both E).
+   for both E);
+4. a print's generated gear (the 10 x 41 hypoid print, its gear set-ups read from the
+   page's words for every variant) is reused for a pinion key, the flank set equal to
+   the fresh cut.
 """
 
 from pathlib import Path
