@@ -169,3 +169,16 @@ def test_reused_replays_warnings_and_computes_outside_a_block():
     with reusing_flanks(None), pytest.warns(UserWarning):
         _noisy(1.0)
     assert _CALLS == [1.0, 3.0, 1.0, 1.0, 1.0]
+
+
+def test_inputs_not_told_exactly_are_computed_never_served():
+    """An argument :func:`exact_key` cannot tell (an arbitrary object): the call computes,
+    stores nothing and is counted."""
+    _CALLS.clear()
+    cache = FlankCache()
+    with reusing_flanks(cache), warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for _ in range(2):
+            _noisy([object()], scale=1)
+    assert len(_CALLS) == 2 and len(cache) == 0
+    assert cache.unkeyed == {f"{__name__}._noisy": 2} and not cache.hits

@@ -61,9 +61,10 @@ class FlankCache:
 
     Attributes
     ----------
-    hits, misses : dict
-        Per function (``module.qualname``): calls served from an entry, and calls
-        computed (and stored).
+    hits, misses, unkeyed : dict
+        Per function (``module.qualname``): calls served from an entry, calls computed
+        and stored, and calls computed without a key (an argument :func:`exact_key`
+        cannot tell exactly: never served, never stored).
     """
 
     def __init__(self, *, max_entries: int = 24):
@@ -74,6 +75,7 @@ class FlankCache:
         self._lock = threading.Lock()
         self.hits: dict = {}
         self.misses: dict = {}
+        self.unkeyed: dict = {}
 
     def __len__(self) -> int:
         return len(self._entries)
@@ -82,8 +84,12 @@ class FlankCache:
         """Drop every entry and the counts."""
         with self._lock:
             self._entries.clear()
-            self.hits.clear()
-            self.misses.clear()
+            for counts in (self.hits, self.misses, self.unkeyed):
+                counts.clear()
+
+    def _count(self, counts: dict, name: str) -> None:
+        with self._lock:
+            counts[name] = counts.get(name, 0) + 1
 
     def _get(self, key):
         with self._lock:
@@ -94,8 +100,8 @@ class FlankCache:
             return got
 
     def _put(self, key, entry) -> None:
+        self._count(self.misses, key[0])
         with self._lock:
-            self.misses[key[0]] = self.misses.get(key[0], 0) + 1
             self._entries[key] = entry
             self._entries.move_to_end(key)
             while len(self._entries) > self.max_entries:
@@ -128,7 +134,11 @@ def reused(fn):
             return fn(*args, **kwargs)
         bound = signature.bind(*args, **kwargs)
         bound.apply_defaults()
-        key = (name, exact_key(tuple(bound.arguments.items())))
+        try:
+            key = (name, exact_key(tuple(bound.arguments.items())))
+        except TypeError:           # inputs not told exactly: computed, never served
+            cache._count(cache.unkeyed, name)
+            return fn(*args, **kwargs)
         entry = cache._get(key)
         if entry is None:
             with warnings.catch_warnings(record=True) as caught:
