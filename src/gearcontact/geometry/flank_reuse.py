@@ -25,7 +25,9 @@ mate, :func:`~.flank.build_machine_flanks`) is computed every time from the flan
 
 The warnings a call emits are part of its result: recorded when it is computed and
 emitted again by every call the entry serves. A call that raises is not stored (the
-next call with its inputs raises again). Results are shared, not copied: the flanks
+next call with its inputs raises again), nor is a call with an argument
+:func:`exact_key` cannot tell exactly (computed, counted in
+:attr:`FlankCache.unkeyed`). Results are shared, not copied: the flanks
 and boxes are immutable by contract (frozen dataclasses; the pinion's turn makes a new
 sheet).
 
