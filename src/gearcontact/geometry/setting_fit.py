@@ -15,9 +15,11 @@ nodes ``(u_k, v_k)`` of a coarse grid over the target's active box. Both flanks 
 the same sheet of the seed's member (pinion: axial position ``v``, radius ``R_f(v) +
 u``; gear: pitch-cone coordinates, :mod:`.sheet`), so the cut node solution
 (:func:`~.member_envelope.member_solver`: the generated envelope, or a formate gear's
-blade surface at zero roll; warm-started from the previous iterate) differs from the
-target only in its angle ``psi`` about the member's axis; to first order in the
-deviation ``d_k`` is the normal distance of the two surfaces. One code path serves
+blade surface at zero roll; warm-started from the previous iterate, solved again by
+continuation from the mean node where a node moved more than one Newton step: another
+branch) differs from the target only in its angle ``psi`` about the member's axis; to
+first order in the deviation ``d_k`` is the normal distance of the two surfaces. One
+code path serves
 both members: only the sheet, the node solver and the default subset
 (:func:`default_parameters`, by member and cutting method) differ.
 ``scipy.optimize.least_squares`` (trust-region reflective) solves it with a
