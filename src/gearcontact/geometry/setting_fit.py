@@ -19,8 +19,7 @@ blade surface at zero roll; warm-started from the previous iterate, solved again
 continuation from the mean node where a node moved more than one Newton step: another
 branch) differs from the target only in its angle ``psi`` about the member's axis; to
 first order in the deviation ``d_k`` is the normal distance of the two surfaces. One
-code path serves
-both members: only the sheet, the node solver and the default subset
+code path serves both members: only the sheet, the node solver and the default subset
 (:func:`default_parameters`, by member and cutting method) differ.
 ``scipy.optimize.least_squares`` (trust-region reflective) solves it with a
 forward-difference Jacobian in scaled parameters (:data:`PARAMETERS`); the residual
@@ -331,8 +330,8 @@ class FitProblem:
             solver = member_solver(setup, self.blank, self.cone)
             q = self.q if name == "main" else self._piece_q.get(name)
             s = None if q is None else solver.solve(self.U, self.V, q, strict=False)
-            if s is None or not np.all(s.converged) or _jumped(s.q, q):
-                s = self._restart(solver, self._mean(solver).q)   # a long step: from the mean node
+            if s is None or not np.all(s.converged) or _jumped(s.q, q):   # a long step:
+                s = self._restart(solver, self._mean(solver).q)          # from the mean node
             out.append((name, s, solver))
         return out
 
