@@ -225,19 +225,26 @@ def _e0_pair():
 @pytest.mark.slow
 @pytest.mark.parametrize("side", [
     pytest.param("drive", marks=pytest.mark.xfail(strict=True, reason=(
-        "differs: TE0 p-p 0.712 arcsec against the bound 0.532. The TCA's pair-2 path at "
-        "phases 2-3 of 31 (TE0 0.772, 0.948: a pinion-heel edge contact) is not a first "
-        "touch: at that pose the pinion point (3.18, 81.73) mm lies 5.6e-5 mm inside the "
-        "gear (an interior foot at gear (8.50, 11.36) mm), and the next pair's contact "
-        "line meets the pinion heel near the root with m 0.573 arcsec (TE0 <= 0.30). "
-        "Without those two phases the TCA's p-p is 0.507 (docs sec. 5)"))),
-    "coast"])
+        "differs: TE0 p-p 0.616 arcsec against the bound 0.501 (session 28's pinion, fitted "
+        "at exact nodes; session 27's: 0.712 against 0.532). The TCA's pair-2 path jumps at "
+        "phase 2 of 31 (TE0 0.269, 0.921, 0.432 at phases 1-3, a gear-heel / pinion-heel "
+        "edge): one pair's TE0, a first touch over fixed flanks, is continuous in the "
+        "phase, so the TCA lost pair 2's first touch there and pair 1 carries 0.616 "
+        "(session 27: that state was 5.6e-5 mm inside the gear; docs sec. 5)"))),
+    pytest.param("coast", marks=pytest.mark.xfail(strict=True, reason=(
+        "differs: TE0 p-p 0.989 arcsec against the bound 0.534 (session 28's pinion, fitted "
+        "at exact nodes; session 27's held, 0.880 against 1.545). The TCA's pair -1 path "
+        "jumps from -0.410 to -1.637 arcsec between phases 23 and 24 of 31 (at 61 phases "
+        "-0.426 to -1.650 between 48 and 49): one pair's TE0, a first touch over fixed "
+        "flanks, is continuous in the phase, so the TCA lost pair -1's first touch and "
+        "pair 0's gear-heel edge carries -0.72 to -0.99 at phases 24-29 (docs sec. 5)")))])
 def test_the_13_26_pair_is_within_its_bound_on_the_contact_lines(side):
     # (d) on the 13/26 at E 0 (its standard generated gear, 2C +-0.05; the table of docs
     # sec. 5), library TCA at the CLI's 120 x 150 nodes, 31 phases: TE0 p-p at most the
     # bound on the contact lines + 1e-4 arcsec (the TCA's conjugacy tolerance). Measured
-    # drive 0.712 against 0.532 (differs, the reason above), coast 0.880 against 1.545
-    # (session 26's flank-wide bound 19.03)
+    # (session 28) drive 0.616 against 0.501, coast 0.989 against 0.534: both differ
+    # through a jump of the TCA's path (the reasons above); session 27: drive 0.712
+    # against 0.532, coast 0.880 against 1.545
     from gearcontact.tca.analysis import analyze_pair
 
     pair = _e0_pair()
@@ -251,10 +258,11 @@ def test_the_13_26_pair_is_within_its_bound_on_the_contact_lines(side):
 
 @pytest.mark.slow
 @pytest.mark.xfail(strict=True, reason=(
-    "differs: TE0 p-p 6.742 arcsec against the bound on the contact lines 5.660. The "
-    "refitted pinion (stage 3, 1.570 um over the conjugate's box) reaches 3.28 mm past the "
-    "conjugate's tip-side edge (u 4.40 mm, the line the gear root generates), and the gear's "
-    "root edge touches it there (u 4.42-4.49 mm) at 26 of 31 phases: outside the common "
+    "differs: TE0 p-p 6.516 arcsec against the bound on the contact lines 4.843 (session "
+    "28; session 27: 6.742 against 5.660). The refitted pinion (stage 3, 1.596 um over "
+    "the conjugate's box) reaches past the conjugate's tip-side edge (u 4.40 mm, the line "
+    "the gear root generates), and the gear's root edge touches it there (u 4.43-4.49 mm) "
+    "at 21 of 31 phases: outside the common "
     "box the bound's upper term covers (docs sec. 5; the amendment over the whole box, "
     "747 arcsec, not adopted)"))
 def test_a_refitted_pinion_past_the_conjugates_box_differs(f2_generated):
@@ -269,3 +277,77 @@ def test_a_refitted_pinion_past_the_conjugates_box_differs(f2_generated):
         warnings.simplefilter("ignore")    # the typed gear's check against the blank
         result, _ = analyze_pair(cut, side="drive", phases=31)
     assert result.cycle.te0_pp_arcsec <= fits["drive"].te_bound_arcsec + 1e-4
+
+
+@pytest.fixture(scope="module")
+def helical_v1_3(f2_generated):
+    """F.2's generated drive gear with a helical motion V_1 = 3 mm/rad (refused at 3.297
+    um before session 28), its derived pinion and its conjugate target."""
+    gear = modified_gear(f2_generated, {"drive": (dict(helical_motion=(3.0,)), {})})
+    seed = typed_gear_pinion_setups(f2_generated, gear)["drive"]
+    return gear, seed, conjugate_target(f2_generated, gear["drive"])
+
+
+@pytest.mark.slow
+def test_the_conjugates_sheet_is_off_its_exact_nodes_at_the_toe_root_corner(
+        f2_generated, helical_v1_3):
+    # the diagnosis of docs sec. 5 ("Why V_1 = 3 was refused"), as a truth about the
+    # target: at the fit grid's toe-root corner node the conjugate's quintic sheet lies
+    # more than the 2 um bound off its own exact meshing nodes (measured 5.04 um; the
+    # sheet's outer node row is conjugate to the gear sheet extrapolated past its nodes),
+    # while at every other node of the 9 x 11 grid within 0.05 um (measured 0.01 um):
+    # both targets through the same FitProblem, the seed's nodes shared, so the
+    # difference is the target's alone
+    from gearcontact.geometry.setting_fit import FitProblem
+    from gearcontact.geometry.typed_pinion_fit import ExactConjugate
+
+    _, seed, target = helical_v1_3
+    b = target.boundary
+    grid = (np.linspace(b.u_root, b.u_tip, 9), np.linspace(b.v_toe, b.v_heel, 11))
+    sheet, exact = (FitProblem(seed, f2_generated.blank, t, (), *grid).deviation_um(np.zeros(0))
+                    .reshape(9, 11) for t in (target, ExactConjugate(target)))
+    diff = np.abs(sheet - exact)
+    assert diff[0, 0] > typed_pinion_fit.RESIDUAL_BOUND_UM
+    diff[0, 0] = 0.0
+    assert diff.max() < 0.05
+
+
+@pytest.mark.slow
+def test_a_helical_motion_v1_3_gear_gets_a_pinion_within_the_bound(f2_generated):
+    # V_1 = 3 mm/rad on F.2's generated drive gear, refused before (3.297 um against the
+    # conjugate's sheet): fitted to the exact conjugate (docs sec. 5, declared) it is
+    # within the unchanged 2 um at stage 1 (measured 0.207 um), and the uncrowned pair's
+    # TE0 p-p (library TCA at the CLI's 120 x 150 nodes, 31 phases) lies within the
+    # bound on the contact lines + 1e-4 arcsec (the TCA's conjugacy tolerance; measured
+    # 0.1735 against 0.1870 arcsec)
+    from gearcontact.tca.analysis import analyze_pair
+
+    gear = modified_gear(f2_generated, {"drive": (dict(helical_motion=(3.0,)), {})})
+    cut, fits = typed_gear_cut(f2_generated, gear, lengthwise_crowning_um=0.0,
+                               blade_profile_crowning_um=0.0)
+    fit = fits["drive"]
+    assert fit.stage == 1
+    assert fit.max_um <= typed_pinion_fit.RESIDUAL_BOUND_UM
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")    # the typed gear's check against the blank
+        result, _ = analyze_pair(cut, side="drive", phases=31)
+    assert result.cycle.te0_pp_arcsec <= fit.te_bound_arcsec + 1e-4
+
+
+@pytest.mark.slow
+def test_a_fit_whose_warm_start_jumps_a_branch_restarts(f2_generated, helical_v1_3):
+    # the warm-started node solve (docs sec. 5, declared): every setting fitted from the
+    # default fit against the conjugate's sheet (session 27's stage 2 on V_1 = 3) jumped
+    # 71 of 99 nodes onto another envelope branch at its 27th evaluation and reported a
+    # fit-grid maximum of 3899 um for a set-up 3.3 um off. The fit's own maximum must
+    # equal that of its set-up solved afresh by continuation from the mean node (a new
+    # FitProblem), to 1e-6 um (rounding of the two node solves)
+    from gearcontact.geometry.setting_fit import PARAMETERS, FitProblem, fit_pinion_setup
+
+    _, seed, target = helical_v1_3
+    first = fit_pinion_setup(seed, f2_generated.blank, target)
+    fit = fit_pinion_setup(first.setup, f2_generated.blank, target, parameters=tuple(PARAMETERS))
+    b = target.boundary
+    fresh = FitProblem(fit.setup, f2_generated.blank, target, (),
+                       np.linspace(b.u_root, b.u_tip, 9), np.linspace(b.v_toe, b.v_heel, 11))
+    assert abs(fit.fit_max_um - np.abs(fresh.deviation_um(np.zeros(0))).max()) < 1e-6

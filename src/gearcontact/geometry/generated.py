@@ -52,14 +52,18 @@ from .generated_box import (LIMIT_FRACTION, active_box, edge_length_mm, edge_rad
 from .machine import MachineKinematics, MachineSetup, blade_point
 from .sheet import GearCone, GearSheet, RadialSheet
 
-__all__ = ["EnvelopeSolution", "EnvelopeSolver", "central_system", "damped_newton",
-           "formate_gear_flank", "gear_cone", "gear_flank_of", "generated_gear_box",
-           "generated_gear_flank", "generated_pinion_box", "generated_pinion_flank",
-           "mean_contact_guess", "mean_uv", "solve_node_grid", "tip_setup", "work_to_body"]
+__all__ = ["ENVELOPE_MAX_STEP", "EnvelopeSolution", "EnvelopeSolver", "central_system",
+           "damped_newton", "formate_gear_flank", "gear_cone", "gear_flank_of",
+           "generated_gear_box", "generated_gear_flank", "generated_pinion_box",
+           "generated_pinion_flank", "mean_contact_guess", "mean_uv", "solve_node_grid",
+           "tip_setup", "work_to_body"]
 
 _TOL = 1e-10          # node-equation residual, mm and mm/rad
 _MAX_ITER = 40
-_MAX_STEP = np.array([0.5, 0.05, 0.05])   # damping: |dl| mm, |dtheta|, |dpsi| rad
+#: Damping of the node solver: largest Newton step |dl| (mm), |dtheta|, |dpsi| (rad); a
+#: warm-started node that moved farther than one such step left its branch
+#: (:class:`~.setting_fit.FitProblem`).
+ENVELOPE_MAX_STEP = np.array([0.5, 0.05, 0.05])
 _FD = 1e-6            # central-difference step of the Jacobian (mm, rad)
 #: |df/dpsi| or |det J| below this fraction of the mean node's: limit line / undercut.
 _LIMIT_FRACTION = LIMIT_FRACTION
@@ -272,7 +276,7 @@ class EnvelopeSolver:
         u, v = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(v, dtype=float))
         x_t, r_t = self.cone.height_mm(u, v), self.cone.radius_mm(u, v)
         q = np.array(np.broadcast_to(guess, u.shape + (3,)), dtype=float)
-        q, F, J = damped_newton(lambda q: self._system(q, x_t, r_t), q, _MAX_STEP)
+        q, F, J = damped_newton(lambda q: self._system(q, x_t, r_t), q, ENVELOPE_MAX_STEP)
         res = np.max(np.abs(F), axis=-1)
         ok = (res < _TOL) & np.all(np.isfinite(q), axis=-1)
         if strict and not np.all(ok):

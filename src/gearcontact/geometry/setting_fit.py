@@ -15,10 +15,11 @@ nodes ``(u_k, v_k)`` of a coarse grid over the target's active box. Both flanks 
 the same sheet of the seed's member (pinion: axial position ``v``, radius ``R_f(v) +
 u``; gear: pitch-cone coordinates, :mod:`.sheet`), so the cut node solution
 (:func:`~.member_envelope.member_solver`: the generated envelope, or a formate gear's
-blade surface at zero roll; warm-started from the previous iterate) differs from the
-target only in its angle ``psi`` about the member's axis; to first order in the
-deviation ``d_k`` is the normal distance of the two surfaces. One code path serves
-both members: only the sheet, the node solver and the default subset
+blade surface at zero roll; warm-started from the previous iterate, solved again by
+continuation from the mean node where a node moved more than one Newton step: another
+branch) differs from the target only in its angle ``psi`` about the member's axis; to
+first order in the deviation ``d_k`` is the normal distance of the two surfaces. One
+code path serves both members: only the sheet, the node solver and the default subset
 (:func:`default_parameters`, by member and cutting method) differ.
 ``scipy.optimize.least_squares`` (trust-region reflective) solves it with a
 forward-difference Jacobian in scaled parameters (:data:`PARAMETERS`); the residual
@@ -82,7 +83,7 @@ from scipy.optimize import least_squares
 from ..validation import InputRangeError, check_range
 from .blank import BlankDesign
 from .conjugate import UndercutError
-from .generated import EnvelopeSolver, solve_node_grid
+from .generated import ENVELOPE_MAX_STEP, EnvelopeSolver, solve_node_grid
 from .machine import BladeSettings, MachineSetup, blade_profile, blade_through_point
 from .member_envelope import angle_lever, mean_node_uv, member_cone, member_solver
 from .relief_setup import blade_relief, check_pivot_on_main, piece_setups, with_relief
@@ -329,8 +330,8 @@ class FitProblem:
             solver = member_solver(setup, self.blank, self.cone)
             q = self.q if name == "main" else self._piece_q.get(name)
             s = None if q is None else solver.solve(self.U, self.V, q, strict=False)
-            if s is None or not np.all(s.converged):   # a long step: from the mean node
-                s = self._restart(solver, self._mean(solver).q)
+            if s is None or not np.all(s.converged) or _jumped(s.q, q):   # a long step:
+                s = self._restart(solver, self._mean(solver).q)          # from the mean node
             out.append((name, s, solver))
         return out
 
@@ -345,6 +346,14 @@ class FitProblem:
         if getattr(self, "first", None) is None:     # at the seed: the reach prediction
             self.first = (f0, jac)
         return jac
+
+
+def _jumped(q, guess) -> bool:
+    """Whether a warm-started node solution ``q`` moved farther than one damped Newton
+    step (:data:`~.generated.ENVELOPE_MAX_STEP`) from its ``guess`` at some node: it may
+    have left the envelope branch of the mean node's continuation (a trial step of a
+    fit with every setting, docs/machine_settings.md sec. 5), so it is not kept."""
+    return bool(np.any(np.abs(q - guess) > ENVELOPE_MAX_STEP))
 
 
 def sensitivity(seed: MachineSetup, blank: BlankDesign, target, *, names=tuple(PARAMETERS),
