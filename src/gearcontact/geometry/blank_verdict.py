@@ -21,7 +21,7 @@ from .blank_statement import StatedBlank
 from .known_slips import slip_fix, with_slip
 from .slip_attribution import describe, interval
 
-__all__ = ["GROSS_FACE_QUANTITY", "BlankCheck", "Comparison", "FlankCheck"]
+__all__ = ["GROSS_FACE_QUANTITY", "BlankCheck", "Comparison", "FlankCheck", "slip_renamed"]
 
 #: The quantity whose gross bound is a fraction of the gear face
 #: (:data:`~.blank_check.GROSS_CONE_FACE_FRACTION`).
@@ -173,6 +173,34 @@ class BlankCheck:
                        f"agree with {_blank(f)}: {_describe(f)}{hint} "
                        "(docs/machine_settings.md sec. 2)")
         return out
+
+
+def slip_renamed(exc: InputRangeError, check, *, failed: str) -> InputRangeError:
+    """``exc`` (raised by the work ``failed`` names) renamed to the likely slip of the
+    first flank of ``check`` (a :class:`BlankCheck`) that does not agree with its blank:
+    its key and value as typed, and the slip's words (the unit or sign under which the
+    flank agrees), else its table. The library's check names a blade edge round's
+    refusal so (:func:`~.settings_check.check_settings`), the command line the failures
+    of the work after it (``cli.settings_slip``).
+    ``exc`` unchanged where every flank agrees, or where ``exc`` names a key of the check
+    already (its own refusal of a gross mismatch)."""
+    bad = [f for f in check.flanks if not f.agrees] if check is not None else []
+    if not bad:
+        return exc
+    # the check's own refusal names a key it found (its slip, another slip, one of the
+    # single keys of a flank that two keys explain, the hand): unchanged
+    named = {k for f in bad for k in (f.slip, *f.slip_also, *(kv.key for kv in f.single_keys))}
+    if exc.field in named | {check.stated.hand_key}:
+        return exc
+    f = next((f for f in bad if f.slip), bad[0])
+    table = "print.gear" if f.printed else f"machine.{f.member}.{f.side}"
+    field, value = (f.slip, f.slip_value) if f.slip else (f"[{table}]", dict(f.typed) or "table")
+    return InputRangeError(field, value, (
+        f"settings that cut their blank's tooth: the {f.member} {f.side} flank does not "
+        f"agree with its blank (the warning above; likely {f.slip or table}"
+        + (f", {with_slip(f.slip_word)} the flank agrees" if f.slip else "") + f"), and {failed} "
+        f"failed on it ({exc.field} = {exc.value!r}: {exc.allowed}); "
+        "docs/machine_settings.md sec. 2"))
 
 
 def _also(f: FlankCheck) -> str:
