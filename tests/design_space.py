@@ -45,6 +45,8 @@ MITER_PAIR = (15, 1.0, 0.0, 23.0, 0.25, "drive", "left")
 
 DESIGN_FIELDS = {"offset_mm", "pinion_spiral_angle_deg",
                  "pinion_spiral_angle_deg / cutter_radius_mm", "gear_addendum_factor",
+                 # the generation check's undercut, named as the pair file spells it
+                 "design.gear_addendum_factor",
                  "pinion_teeth / gear_teeth", "design.working_depth_factor",
                  "cutter.point_width_mm", "design.gear_face_width_mm",
                  # the contact-ratio check's, named as the pair file spells them

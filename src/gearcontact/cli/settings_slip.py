@@ -11,34 +11,11 @@ from __future__ import annotations
 
 import sys
 
+from ..geometry.blank_verdict import slip_renamed  # the one renaming, also the library's
 from ..geometry.formate import SIDES
 from ..validation import InputRangeError
 
 __all__ = ["slip_renamed", "checked_blank_named", "checked_typed_gear", "work_slip_renamed"]
-
-
-def slip_renamed(exc: InputRangeError, check, *, failed: str) -> InputRangeError:
-    """``exc`` (raised by the work ``failed`` names) renamed to the likely slip of the
-    first flank of ``check`` (a :class:`~gearcontact.geometry.blank_verdict.BlankCheck`)
-    that does not agree with its blank: its key and value as typed, else its table.
-    ``exc`` unchanged where every flank agrees, or where ``exc`` names a key of the check
-    already (its own refusal of a gross mismatch)."""
-    bad = [f for f in check.flanks if not f.agrees] if check is not None else []
-    if not bad:
-        return exc
-    # the check's own refusal names a key it found (its slip, another slip, one of the
-    # single keys of a flank that two keys explain, the hand): unchanged
-    named = {k for f in bad for k in (f.slip, *f.slip_also, *(kv.key for kv in f.single_keys))}
-    if exc.field in named | {check.stated.hand_key}:
-        return exc
-    f = next((f for f in bad if f.slip), bad[0])
-    table = "print.gear" if f.printed else f"machine.{f.member}.{f.side}"
-    field, value = (f.slip, f.slip_value) if f.slip else (f"[{table}]", dict(f.typed) or "table")
-    return InputRangeError(field, value, (
-        f"settings that cut their blank's tooth: the {f.member} {f.side} flank does not "
-        f"agree with its blank (the warning above; likely {f.slip or table}), and {failed} "
-        f"failed on it ({exc.field} = {exc.value!r}: {exc.allowed}); "
-        "docs/machine_settings.md sec. 2"))
 
 
 def work_slip_renamed(exc, args, command: str):

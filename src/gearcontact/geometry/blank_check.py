@@ -290,6 +290,29 @@ def _circle(setup: MachineSetup, stated: StatedBlank, start=None) -> tuple[dict,
     return {"spiral angle": spiral, "mean cone distance": cone}, None
 
 
+def _reach(setup: MachineSetup, stated: StatedBlank, f: FlankCheck) -> FlankCheck:
+    """``f`` with :attr:`~.blank_verdict.FlankCheck.reach`: a gear flank that does not
+    reach its mean point compared in closed form (:func:`_circle`: its generating gear's
+    spiral angle and mean cone distance, the tolerance propagated in closed form as
+    :meth:`_Compare.outside` does), with the gross bounds (docs sec. 2, "A mean point not
+    reached"); ``f`` itself for a pinion, a flank with values, or a cutter circle that
+    misses the root line (its ``missing`` says so)."""
+    if setup.member != "gear" or not f.missing:
+        return f
+    try:
+        values, _ = _circle(setup, stated)
+    except InputRangeError:
+        return f
+    try:
+        tol = _tolerances(setup, stated, values, None, measure=_circle)
+    except InputRangeError:      # a move of the rounding loses the circle: the solve's floor
+        tol = {q: _FLOOR for q in values}
+    want = _stated_values("gear", setup.side, stated)
+    return dataclasses.replace(f, reach=tuple(
+        Comparison(q, _UNITS[q], values[q], want[q], tol[q], _gross_bound(q, stated))
+        for q in values))
+
+
 class _Compare:
     """The check's comparison of one flank (:class:`~.known_slips.Compare`);
     ``screened``: :meth:`outside` screens gear candidates without a solve (False: it
@@ -412,6 +435,7 @@ def check_flanks(setups, stated: StatedBlank, *, measured=None,
         for s, st, (_, tol) in zip(setups, states, first))
     out = []
     for s, st, (f, tol) in zip(setups, states, first):
+        f = _reach(s, st, f)
         if not f.agrees and not hand_slip:
             datum = st.mctb_datum_mm.get(s.member, 0.0)
             compare = _Compare(st, tol, screened=screened)

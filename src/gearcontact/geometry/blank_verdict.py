@@ -21,7 +21,7 @@ from .blank_statement import StatedBlank
 from .known_slips import slip_fix, with_slip
 from .slip_attribution import describe, interval
 
-__all__ = ["GROSS_FACE_QUANTITY", "BlankCheck", "Comparison", "FlankCheck"]
+__all__ = ["GROSS_FACE_QUANTITY", "BlankCheck", "Comparison", "FlankCheck", "slip_renamed"]
 
 #: The quantity whose gross bound is a fraction of the gear face
 #: (:data:`~.blank_check.GROSS_CONE_FACE_FRACTION`).
@@ -69,7 +69,11 @@ class FlankCheck:
     the flank's settings were converted from ``[print.gear]`` and compared with the
     page's printed blank (:func:`~.blank_statement.printed_stated_blank`), its keys the
     print's; ``typed``: where neither a slip nor a single key explains it, its typed keys and
-    values ``((full key, value), ...)``, what a refusal names."""
+    values ``((full key, value), ...)``, what a refusal names; ``reach``: a gear flank that
+    does not reach its mean point, its generating gear's spiral angle and mean cone
+    distance in closed form (:func:`~.flank_angles.generating_circle`, which needs no
+    point of the flank) against the blank's, with their gross bounds (docs sec. 2, "A
+    mean point not reached")."""
 
     member: str
     side: str
@@ -82,6 +86,7 @@ class FlankCheck:
     single_keys: tuple = ()
     printed: bool = False
     typed: tuple = ()
+    reach: tuple = ()
 
     @property
     def agrees(self) -> bool:
@@ -92,8 +97,13 @@ class FlankCheck:
         """The hand against the blank's, a spiral angle off by more than
         :data:`~.blank_check.GROSS_SPIRAL_DEG`, a pressure angle by more than :data:`~.blank_check.GROSS_PRESSURE_DEG`
         or a gear's mean cone distance by more than :data:`~.blank_check.GROSS_CONE_FACE_FRACTION` of
-        the face (:attr:`Comparison.gross`)."""
-        return any(c.gross for c in self.comparisons)
+        the face (:attr:`Comparison.gross`; of a flank that does not reach its mean point,
+        its generating gear's in closed form, :attr:`reach`); or a flank that does not
+        reach its mean point and that a unit slip of one key makes agree (:attr:`slip`, a
+        unit word: the typed value a unit factor from one that cuts the blank's tooth;
+        docs sec. 2, "A mean point not reached")."""
+        return (any(c.gross for c in self.comparisons + self.reach)
+                or bool(self.missing and self.slip and slip_fix(self.slip_word) == "unit"))
 
 
 @dataclass(frozen=True)
@@ -165,6 +175,34 @@ class BlankCheck:
         return out
 
 
+def slip_renamed(exc: InputRangeError, check, *, failed: str) -> InputRangeError:
+    """``exc`` (raised by the work ``failed`` names) renamed to the likely slip of the
+    first flank of ``check`` (a :class:`BlankCheck`) that does not agree with its blank:
+    its key and value as typed, and the slip's words (the unit or sign under which the
+    flank agrees), else its table. The library's check names a blade edge round's
+    refusal so (:func:`~.settings_check.check_settings`), the command line the failures
+    of the work after it (``cli.settings_slip``).
+    ``exc`` unchanged where every flank agrees, or where ``exc`` names a key of the check
+    already (its own refusal of a gross mismatch)."""
+    bad = [f for f in check.flanks if not f.agrees] if check is not None else []
+    if not bad:
+        return exc
+    # the check's own refusal names a key it found (its slip, another slip, one of the
+    # single keys of a flank that two keys explain, the hand): unchanged
+    named = {k for f in bad for k in (f.slip, *f.slip_also, *(kv.key for kv in f.single_keys))}
+    if exc.field in named | {check.stated.hand_key}:
+        return exc
+    f = next((f for f in bad if f.slip), bad[0])
+    table = "print.gear" if f.printed else f"machine.{f.member}.{f.side}"
+    field, value = (f.slip, f.slip_value) if f.slip else (f"[{table}]", dict(f.typed) or "table")
+    return InputRangeError(field, value, (
+        f"settings that cut their blank's tooth: the {f.member} {f.side} flank does not "
+        f"agree with its blank (the warning above; likely {f.slip or table}"
+        + (f", {with_slip(f.slip_word)} the flank agrees" if f.slip else "") + f"), and {failed} "
+        f"failed on it ({exc.field} = {exc.value!r}: {exc.allowed}); "
+        "docs/machine_settings.md sec. 2"))
+
+
 def _also(f: FlankCheck) -> str:
     """``"; it agrees as well with the other sign of <keys>"`` (the slips of two keys:
     ``"with the slips of <key> and <key>, ..."``), or ""."""
@@ -181,12 +219,21 @@ def _blank(f: FlankCheck) -> str:
 
 
 def _describe(f: FlankCheck) -> str:
+    """The values of ``f`` outside their tolerance; of a flank that does not reach its
+    mean point, why, and its generating gear's gross values in closed form
+    (:attr:`FlankCheck.reach`; none where none is gross: a warning's words as before)."""
     if f.missing:
-        return f.missing
+        gross = [c for c in f.reach if c.gross]
+        return f.missing + (f"; its generating gear's {_rows(f, gross)}" if gross else "")
+    return _rows(f, [c for c in f.comparisons if not c.within])
+
+
+def _rows(f: FlankCheck, rows) -> str:
+    """``"<quantity> <measured> <unit>, the blank's <stated> (tolerance ...)"``, joined."""
     return ", ".join(
         f"{c.quantity} {c.measured}, {_blank(f)}'s {c.stated}" if c.tolerance is None else
         f"{c.quantity} {c.measured:.4f} {c.unit}, {_blank(f)}'s {c.stated:.4f} (tolerance "
-        f"{c.tolerance:.2g}{_off_face(c)})" for c in f.comparisons if not c.within)
+        f"{c.tolerance:.2g}{_off_face(c)})" for c in rows)
 
 
 def _off_face(c: Comparison) -> str:

@@ -25,6 +25,7 @@ from .contact_ratio import check_contact_ratio
 from .easeoff import EaseOff
 from .flank import right_hand_twin
 from .gear_generation import pair_generation
+from .pair import blank_key_error
 from .settings_top_land import check_settings_top_land, member_box
 from .tip_land import (TIP_MARCH, TIP_STATIONS, X_AXIS, Z_AXIS, flank_mid, flank_tip_line,
                        one_tooth_turn, tip_land_mm)
@@ -149,7 +150,10 @@ def _undercut_checked_boxes(pair) -> dict:
         return _generation_boxes(pair)
     except UndercutError as err:
         if err.fix is None:
-            raise
+            named = _file_keys(err)
+            if named is err:
+                raise
+            raise named from None
         first, fix = err, err.fix
     for _ in range(_FIX_TRIALS):
         try:
@@ -162,10 +166,22 @@ def _undercut_checked_boxes(pair) -> dict:
             break
         else:
             tail = first.allowed[first.allowed.index(" (or no undercut)"):]
-            raise UndercutError(first.field, first.value, f"<= {fix:.3f}{tail}", fix=fix)
-    raise UndercutError("pinion_teeth / gear_teeth", (pair.pinion_teeth, pair.gear_teeth),
-                        "a pair whose pinion the gear generates: no gear addendum "
-                        f"factor avoids the undercut ({first.allowed.split(': ', 1)[1]})")
+            raise _file_keys(UndercutError(first.field, first.value, f"<= {fix:.3f}{tail}",
+                                           fix=fix))
+    raise _file_keys(UndercutError(
+        "pinion_teeth / gear_teeth", (pair.pinion_teeth, pair.gear_teeth),
+        "a pair whose pinion the gear generates: no gear addendum factor avoids the "
+        f"undercut ({first.allowed.split(': ', 1)[1]})"))
+
+
+def _file_keys(err: UndercutError) -> UndercutError:
+    """``err`` naming the blank's fields as the pair file spells them
+    (``design.gear_addendum_factor``, ``teeth.pinion / teeth.gear``: the reader's mapping,
+    :func:`~.pair.blank_key_error`), its ``fix`` kept; ``err`` itself where it names
+    none."""
+    named = blank_key_error(err)
+    return err if named is err else UndercutError(named.field, named.value, named.allowed,
+                                                  fix=err.fix)
 
 
 #: Smaller gear addendum factors tried by :func:`check_generation` to verify its fix.

@@ -56,14 +56,17 @@ SLIPS = (("blank_offset_mm", lambda x: -x, "blank offset UP / DN"),
          *((k, lambda x: -x, f"modified roll {k.split('_')[2].upper()} sign")
            for k in MODIFIED_ROLL_KEYS))
 #: The unit slips (:data:`INCH_MM`), tried with :data:`SLIPS`: (key, the slip, what
-#: the slip is): a length typed in inches (x 25.4) or converted twice (/ 25.4), an angle
-#: typed in radians. The words read "with the unit corrected (...)".
+#: the slip is): a length typed in inches (x 25.4) or converted twice (/ 25.4), the
+#: radial distance typed in metres (x 1000), an angle typed in radians. The words read
+#: "with the unit corrected (...)".
 UNIT_SLIPS = (*((k, lambda x: x * INCH_MM, "unit corrected (typed in inches: x 25.4 mm)")
                 for k in ("radial_distance_mm", "machine_centre_to_back_mm",
                           "sliding_base_mm", "blank_offset_mm", "point_radius_mm")),
               *((k, lambda x: x / INCH_MM, "unit corrected (converted to mm twice: / 25.4)")
                 for k in ("radial_distance_mm", "machine_centre_to_back_mm",
                           "sliding_base_mm", "blank_offset_mm", "point_radius_mm")),
+              ("radial_distance_mm", lambda x: x * 1000.0,
+               "unit corrected (typed in metres: x 1000 mm)"),
               *((k, math.degrees, "unit corrected (typed in radians: to degrees)")
                 for k in ("blade_angle_deg", "cradle_angle_deg", "machine_root_angle_deg",
                           "tilt_deg", "swivel_deg")))

@@ -34,8 +34,9 @@ import time
 import warnings
 from dataclasses import dataclass, field
 
+from ..validation import InputRangeError
 from .blank_check import check_pair_blank
-from .blank_verdict import BlankCheck
+from .blank_verdict import BlankCheck, slip_renamed
 from .easeoff_shape import EaseOffShapeCheck, check_easeoff_shape
 from .edge_check import check_edge_rounds
 from .flank_angles import measure_pair_mean_points
@@ -129,7 +130,10 @@ def check_settings(pair, *, measured=None, easeoff_generated: bool = False,
     InputRangeError
         A gross mismatch, naming the likely key
         (:meth:`~.blank_verdict.BlankCheck.raise_if_gross`); a blade edge round that ends
-        above its flank's mean point (:func:`~.edge_check.check_edge_rounds`). The
+        above its flank's mean point (:func:`~.edge_check.check_edge_rounds`), named by
+        the likely slip of a flank off its blank where there is one
+        (:func:`~.blank_verdict.slip_renamed`: a sliding base typed in inches puts the
+        mean point in the round, docs/machine_settings.md sec. 2). The
         ease-off shape is measured after both (a flank it cannot measure is named in
         its ``missing``, never raised).
     """
@@ -142,7 +146,10 @@ def check_settings(pair, *, measured=None, easeoff_generated: bool = False,
     blank = SettingsCheck(got, tuple(got.warnings()), time.perf_counter() - t0)
     if on_blank is not None:
         on_blank(blank)
-    check_edge_rounds(pair.machine, measured)
+    try:
+        check_edge_rounds(pair.machine, measured)
+    except InputRangeError as exc:      # a slip's consequence: named by the slip
+        raise slip_renamed(exc, got, failed="the check of its flanks") from None
     shape = check_easeoff_shape(pair, generated=easeoff_generated)     # the flank work
     return dataclasses.replace(blank, seconds=time.perf_counter() - t0, easeoff=shape)
 
