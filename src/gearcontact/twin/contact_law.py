@@ -199,7 +199,8 @@ def _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst, trace, tc
         A, B = _row(cv_t, s, j, i, f, 0), _row(cv_t, s, j, i, f, 1)
         if golden:
             kap = _kappa_golden(np.int64(math.floor(min(A, B) * _S20 + 0.5)),
-                                np.int64(math.floor(max(A, B) * _S20 + 0.5)), 0, we, prm,
+                                np.int64(math.floor(max(A, B) * _S20 + 0.5)),
+                                np.int64(0), we, prm,   # as ff's type below: one compile
                                 pow_lut, cbrt_lut, cst, trace, tcount, fit, out3)
             if kap > 0.0:
                 return kap

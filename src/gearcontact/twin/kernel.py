@@ -130,8 +130,10 @@ def _elastic(theta, i, f, s, sd, prm, lever, opening, cv_t, valid, cb_t, backend
                 cb0 = cache[sd, j, 10]      # the pair's last, else minus the uniform's
                 if not cb0 > 0.0:
                     cb0 = -(cb_t[s, j, i] + f * (cb_t[s, j, i + 1] - cb_t[s, j, i]))
-                kap = _line_law(s, sd * n_p + j, j, i, f, d, cb0, we, prm, cv_t, backend,
-                                pow_lut, cbrt_lut, cst, trace, tcount, fit, pv)
+                # np.int64(s): one compiled _line_law for both flanks (a literal 0 from
+                # _flank(0, ...) compiled a second copy; docs/performance.md, "Session 28")
+                kap = _line_law(np.int64(s), sd * n_p + j, j, i, f, d, cb0, we, prm, cv_t,
+                                backend, pow_lut, cbrt_lut, cst, trace, tcount, fit, pv)
             else:
                 kap = _kappa(s, j, i, f, we, prm, cv_t, backend, pow_lut, cbrt_lut, cst,
                              trace, tcount, fit, pv)

@@ -100,7 +100,7 @@ from numba import njit
 
 from ..analytic.hertz import line_contact_terms
 from ..contract.qformat import CURVATURE, STENCIL_GAP
-from ..ltca.coupled_slice_law import core_scratch, coupled_solve, start_offset
+from ..ltca.coupled_slice_law import MAX_STEPS, core_scratch, coupled_solve, start_offset
 from ..ltca.slice_law import (equivalent_length, interference, interference_load,
                               line_pair_load, loaded_line)
 from ..preview.chain import LINE_B_ZERO_CODES, LINE_CHAIN_FIT_FLAGS
@@ -314,8 +314,10 @@ def _coupled_state(cv_t, s, j, i, f, c_g, pv, n, nb, wb, length, d, d_c, w, area
             for b in range(m):
                 acc += pv[ob + m + a * m + b] * pv[N_PREVIEW + m + b]
             pv[ox + a] = pv[ob + a] + c * acc
+    # the argument types of ltca.coupled_slice_law.coupled_line's call (a bool, not the
+    # literal True; MAX_STEPS given): one compiled coupled_solve for both
     d_c, l_c, area, w, steps = coupled_solve(pv, ob, m, n, length, b_max, e_prime, nb, wb, d,
-                                             True, w)
+                                             np.bool_(True), w, np.int64(MAX_STEPS))
     if steps < 0:
         raise ArithmeticError("coupled slice law: no convergence (docs/cylindrical.md "
                               "sec. 10)")
