@@ -144,6 +144,62 @@ def test_the_straight_blade_is_the_tangent_at_the_reference(cancelled):
     assert abs(alpha - alpha_s) < 1e-12
 
 
+def test_a_fitted_profile_of_rounding_is_written_straight(cancelled):
+    """The ease-off fit of a side with nothing to fit (s0003's drive, its ease-off table
+    all zero; session 28's audit): radius -1.04e10 mm and cubic 1.1e-10 1/mm^2, written
+    as a curved blade. Truths: the departure bound |k| L^2 / 2 + |c_3| L^3 / 6 holds
+    against the profile computed by quadrature (blade_profile's, 1e-12 mm: the bound is
+    |sin x| <= |x| integrated, so no margin is needed beyond rounding); below 1 nm the
+    blade is written straight, every term 0, the tangent at the reference (1e-12 mm /
+    rad); the note names both keys."""
+    setup = next(s for s in cancelled.machine if s.member == "pinion")
+    fitted = dataclasses.replace(setup.blade, profile_radius_mm=-10433548259.72101,
+                                 profile_cubic_per_mm2=1.1186337251482102e-10)
+    length = working_length_mm(cancelled, fitted)
+    dev = profile_deviation_mm(fitted, length)
+    assert dev == pytest.approx(0.5 * length ** 2 / 10433548259.72101
+                                + 1.1186337251482102e-10 * length ** 3 / 6.0, rel=1e-15)
+    assert dev < STRAIGHT_DEVIATION_MM
+    pair = dataclasses.replace(cancelled, machine=tuple(
+        dataclasses.replace(s, blade=fitted) if s is setup else s for s in cancelled.machine))
+    written, notes = written_pair(pair)
+    blade = next(s.blade for s in written.machine if (s.member, s.side) ==
+                 (setup.member, setup.side))
+    assert (blade.profile_radius_mm, blade.profile_cubic_per_mm2,
+            blade.profile_quartic_per_mm3) == (0.0, 0.0, 0.0)
+    assert any(n.startswith(f"blade.pinion.{setup.side}.profile_radius_mm / "
+                            "profile_cubic_per_mm2: the derived profile (radius -1.04e+10 mm, "
+                            "cubic 1.12e-10 1/mm^2) departs") and "written straight" in n
+               for n in notes), notes
+    rho, z, alpha, _ = blade_profile(fitted, fitted.profile_reference_mm)
+    rho_s, z_s, alpha_s, _ = blade_profile(blade, blade.profile_reference_mm)
+    assert abs(rho - rho_s) < 1e-12 and abs(z - z_s) < 1e-12 and abs(alpha - alpha_s) < 1e-12
+
+
+def test_the_higher_order_bound_holds_against_the_profile(cancelled):
+    """The departure bound of a cubic and a quartic term large enough to be seen
+    (c_3 = 1e-4 1/mm^2, c_4 = -2e-5 1/mm^3): the straight tangent's distance to the
+    quadrature profile over the working length is within the bound (+1e-12 mm of
+    rounding) for each term alone and for both; a term alone reaches its bound at the
+    far end s = L to within 1 % (the bound is |sin x| <= |x| integrated and the angle
+    stays below 0.05 rad, so the first-order loss is below 1e-3)."""
+    blade = next(s.blade for s in cancelled.machine if s.member == "pinion")
+    for c3, c4, tight in ((1e-4, 0.0, True), (0.0, -2e-5, True), (1e-4, -2e-5, False)):
+        b = dataclasses.replace(blade, profile_radius_mm=0.0, profile_cubic_per_mm2=c3,
+                                profile_quartic_per_mm3=c4)
+        length = working_length_mm(cancelled, b)
+        s_ref = b.profile_reference_mm
+        ls = np.linspace(s_ref, s_ref + length, 401)
+        rho, z, _, _ = blade_profile(b, ls)
+        rho0, z0, a0, _ = blade_profile(b, s_ref)
+        gap = np.abs((np.asarray(rho) - rho0) * np.cos(a0)
+                     + b.sigma * (np.asarray(z) - z0) * np.sin(a0))
+        dev = profile_deviation_mm(b, length)
+        assert np.max(gap) <= dev + 1e-12, (c3, c4)
+        if tight:
+            assert gap[-1] >= 0.99 * dev, (c3, c4, gap[-1], dev)
+
+
 @pytest.mark.slow
 def test_design_writes_the_cancelled_curvature_straight(tmp_path):
     """Through the console script (~1 min at load 16): `design --machine-settings` on

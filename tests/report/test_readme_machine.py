@@ -113,6 +113,16 @@ def test_readme_s0003_machine_settings_line(tmp_path):
     assert len(pair.machine) == 4
     coast = next(s for s in pair.machine if (s.member, s.side) == ("pinion", "coast"))
     assert coast.blade.profile_cubic_per_mm2 != 0.0
+    # drive: its ease-off table is all zero, so the fit leaves terms of rounding (a
+    # radius of 1e10 mm, a cubic of 1e-10 1/mm^2; session 28's audit): written straight,
+    # as geometry.written_blade's 1 nm rule says, and named in the head comment
+    drive = next(s for s in pair.machine if (s.member, s.side) == ("pinion", "drive"))
+    assert (drive.blade.profile_radius_mm, drive.blade.profile_cubic_per_mm2,
+            drive.blade.profile_quartic_per_mm3) == (0.0, 0.0, 0.0)
+    head = (tmp_path / "mach_s0003" / "machine_settings.toml").read_text()
+    assert "# blade.pinion.drive.profile_radius_mm / profile_cubic_per_mm2: the derived " \
+        "profile" in head and "written straight (0)" in head
+    assert "refuse this side" in head
     assert (tmp_path / "mach_s0003" / "machine_settings_residual.svg").is_file()
 
 

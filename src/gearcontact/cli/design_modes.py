@@ -88,7 +88,7 @@ def line_contact_note(args, cut, sides) -> list[str]:
     found = settings_line_contact(cut, sides=sides)
     for line in found.values():
         print(f"gearcontact design: warning: the settings are written uncrowned, as asked; "
-              f"the loaded commands refuse them: {line}", file=sys.stderr)
+              f"the loaded commands refuse that side: {line}", file=sys.stderr)
     run = getattr(args, "run", None)
     if run is not None and found:
         run.input_checks["line_contact"] = {side: {"b_minus_per_mm": line.found,
@@ -99,7 +99,7 @@ def line_contact_note(args, cut, sides) -> list[str]:
                f"{STANDARD_CROWNING['blade_profile_crowning_um']:g}")
     return [line for side in found for line in (
         f"{side}: uncrowned: the TCA finds line contact (B- below {LINE_CURVATURE_PER_MM:g} "
-        f"1/mm at its reference point); the loaded commands refuse this pair ({default}).",
+        f"1/mm at its reference point); the loaded commands refuse this side ({default}).",
         CROWNING_ADVICE)]
 
 
