@@ -1,0 +1,143 @@
+"""The datum of the TCA's edge rows against the coupled LCP (docs/twin.md, "The TCA's edge
+rows: the approach from the touch?", declared before the code; session 28).
+
+On s0003 coast (the twin's fixture table, 31 phases, rigid, 64.5 N·m) a point is a TCA
+phase whose column holds a valid edge row (``contact_mode`` 1: an edge of one flank
+touching the other) that the coupled LCP loads with at least a twentieth of the torque.
+
+Truth: the torque-constrained half-space LCP of every valid pair of the column
+(:func:`gearcontact.ltca.mesh_lcp.solve_mesh_lcp`, rigid), the other pairs on their
+loaded-TE fields (40 cells), the edge row on a field in its own frame covering its patch
+(the box of the single-pair LCP's contact at the whole torque on its 40-cell edge field,
+widened by 1.5 of those cells) at 80 and 160 cells per side; its approach ``l theta - g``
+at 160 cells, ``g`` the row's opening (the TCA's exact edge touch), at the load ``W`` the
+LCP gives it.
+
+Law: the twin's (and ``TE_pre``'s at this torque) law of the row, :func:`gearcontact.
+ltca.edge_rows.row_law` calibrated at 64.5 N·m, ``c(W) kappa W^(2/3)`` at that ``W``.
+
+Bound (declared, the datum work's: tests/twin/test_off_flank.py): 2 % + the LCP's mesh
+error (80 against 160 cells, relative) + ``|n_lo - low_exponent| ln(W_lo / W)`` below
+the least calibration load.
+"""
+
+import numpy as np
+import pytest
+
+from gearcontact.analytic.hertz import hamrock_brewe_hertz
+from gearcontact.halfspace.lcp import solve_lcp
+from gearcontact.ltca.edge_rows import row_law
+from gearcontact.ltca.flank_touch import flank_gaps_mm
+from gearcontact.ltca.mesh_lcp import PairBlock, solve_mesh_lcp
+from gearcontact.ltca.pair_ltca import OFF_FLANK_GAP_MM
+from gearcontact.ltca.patch_field import patch_grid
+
+from .conftest import TORQUE_NM
+from .test_off_flank import INTERPOLATION, _contacts, _fields
+
+#: Truth cells per side of the edge row's field: the LCP at the finer, its mesh error the
+#: relative change from the coarser (module docstring).
+TRUTH_CELLS = (80, 160)
+#: Patch box margin in cells of the row's 40-cell field (module docstring).
+MARGIN_CELLS = 1.5
+
+
+def _edge_points(mesh, tca):
+    """``(table row, table column, TCA phase)`` of every valid edge row (mode 1)."""
+    cycle = tca.cycle
+    out = []
+    for i, kk in zip(*np.nonzero(mesh.valid & (mesh.contact_mode == 1))):
+        k = int(np.argmin(np.abs(cycle.phi1_rad - mesh.phi1_rad[kk])))
+        out.append((int(i), int(kk), k))
+    return out
+
+
+def _truth_block(fields, pc, cells: int, materials) -> PairBlock:
+    """The edge row's block over its patch box (module docstring) at ``cells``."""
+    gap, grid, off, lever = fields.get(pc)
+    res = solve_lcp(gap, grid, fields.torque / lever, materials=materials, warn_coarse=False)
+    assert res.converged
+    s, t = np.meshgrid(grid.x_mm, grid.y_mm)
+    m = res.contact_mask
+    hs, ht = MARGIN_CELLS * float(grid.dx_mm[0]), MARGIN_CELLS * float(grid.dy_mm[0])
+    box = (s[m].min() - hs, s[m].max() + hs, t[m].min() - ht, t[m].max() + ht)
+    s_axis, t_axis, fine = patch_grid(box, cells)
+    ss, tt = np.meshgrid(s_axis, t_axis)
+    g = flank_gaps_mm(fields, pc, ss, tt)
+    return PairBlock(np.where(np.isfinite(g), g, OFF_FLANK_GAP_MM), fine, lever, 0.0)
+
+
+def _coupled(pair, tca, mesh, fields, point, cells):
+    """``(load of the edge row (N), its approach l theta - g (mm), its contact)``."""
+    i, kk, k = point
+    mats = (pair.pinion_material, pair.gear_material)
+    offsets = [tca.cycle.pair_offsets[j] for j in np.flatnonzero(mesh.valid[:, kk])]
+    blocks, target = [], None
+    for pc in _contacts(fields, tca, k):
+        if pc.offset not in offsets:
+            continue
+        if pc.offset == tca.cycle.pair_offsets[i]:
+            assert not pc.edge and fields.path.points[pc.path_index].edge_contact
+            target = (len(blocks), pc)
+            blocks.append(_truth_block(fields, pc, cells, mats))
+        else:
+            blocks.append(fields.block(pc, rigid=True)[0])
+    res = solve_mesh_lcp(blocks, fields.torque, materials=mats)
+    assert res.converged
+    j, pc = target
+    return float(res.pair_loads_n[j]), blocks[j].lever_mm * res.rotation_rad - pc.offset_mm, pc
+
+
+def datum_points_of(pair, tca, flanks, mesh):
+    """``(fields, [(point, W at 160 cells, approach at 160, mesh error, contact)])`` of
+    the points the coupled LCP loads with at least T/20."""
+    fields = _fields(pair, tca, flanks, 1e3 * TORQUE_NM)
+    out = []
+    for point in _edge_points(mesh, tca):
+        got = {n: _coupled(pair, tca, mesh, fields, point, n) for n in TRUTH_CELLS}
+        w, approach, pc = got[TRUTH_CELLS[1]]
+        print(f"\npoint {point}: W {w:.2f} N ({TRUTH_CELLS[0]} cells {got[TRUTH_CELLS[0]][0]:.2f}),"
+              f" W l / T {w * pc.lever_mm / (1e3 * TORQUE_NM):.3f}, approach "
+              f"{1e3 * approach:.4f} um ({1e3 * got[TRUTH_CELLS[0]][1]:.4f})")
+        if w * pc.lever_mm < 0.05e3 * TORQUE_NM:
+            continue
+        error = abs(got[TRUTH_CELLS[0]][1] - approach) / abs(approach)
+        out.append((point, w, approach, error, pc))
+    return fields, out
+
+
+@pytest.fixture(scope="module")
+def datum_points(s0003_coast_twin):
+    return datum_points_of(*s0003_coast_twin)
+
+
+@pytest.mark.slow
+def test_tca_edge_rows_against_the_coupled_lcp(s0003_coast_twin, datum_points):
+    """The law of every point within the declared bound (module docstring). About 2 min."""
+    pair, *_ = s0003_coast_twin
+    fields, points = datum_points
+    assert len(points) >= 2
+    checks = law_against_truth(pair, fields, points)
+    print(f"largest |law - LCP| / bound {max(abs(r) / b for _, r, b in checks):.3f}")
+    assert all(abs(rel) <= bound for _, rel, bound in checks), checks
+
+
+def law_against_truth(pair, fields, points) -> list:
+    """``[(point, law / truth - 1, bound)]`` (module docstring)."""
+    mats = (pair.pinion_material, pair.gear_material)
+    checks = []
+    for point, w, approach, mesh_error, pc in points:
+        law = row_law(fields, pc, materials=mats, torque_nmm=1e3 * TORQUE_NM, cache={})
+        lo = law.loads_n[0]
+        bound = (abs(law.low_local_exponent - law.low_exponent) * max(np.log(lo / w), 0.0)
+                 + INTERPOLATION + mesh_error)
+        kap0 = hamrock_brewe_hertz(pc.A_minus_per_mm, pc.B_minus_per_mm, 1.0,
+                                   e_prime_mpa=fields.e_prime).approach_mm
+        got = float(law.scale_at(w)) * kap0 * w ** (2 / 3)
+        rel = got / approach - 1.0
+        print(f"point {point} {fields.path.points[pc.path_index].edge_contact}: law "
+              f"{1e3 * got:.4f} um against {1e3 * approach:.4f} um, {rel:+.4f}; bound "
+              f"{bound:.4f} (mesh error {mesh_error:.4f}); loads {law.loads_n.round(1)} N, "
+              f"c(W) {float(law.scale_at(w)):.4f}")
+        checks.append((point, rel, bound))
+    return checks
