@@ -33,7 +33,9 @@ from gearcontact.ltca.pair_ltca import OFF_FLANK_GAP_MM
 from gearcontact.ltca.patch_field import patch_grid
 
 from .conftest import TORQUE_NM
-from .test_off_flank import INTERPOLATION, _contacts, _fields
+from table_fields import table_fields
+
+from .test_off_flank import INTERPOLATION, _contacts
 
 #: Truth cells per side of the edge row's field: the LCP at the finer, its mesh error the
 #: relative change from the coarser (module docstring).
@@ -88,18 +90,19 @@ def _coupled(pair, tca, mesh, fields, point, cells):
     return float(res.pair_loads_n[j]), blocks[j].lever_mm * res.rotation_rad - pc.offset_mm, pc
 
 
-def datum_points_of(pair, tca, flanks, mesh):
+def datum_points_of(pair, tca, flanks, mesh, torque_nm: float = TORQUE_NM):
     """``(fields, [(point, W at 160 cells, approach at 160, mesh error, contact)])`` of
-    the points the coupled LCP loads with at least T/20."""
-    fields = _fields(pair, tca, flanks, 1e3 * TORQUE_NM)
+    the points the coupled LCP at ``torque_nm`` loads with at least a twentieth of it
+    (the fields: the loaded TE's at that torque)."""
+    fields = table_fields(pair, tca, flanks, mesh.side, torque_nm).fields
     out = []
     for point in _edge_points(mesh, tca):
         got = {n: _coupled(pair, tca, mesh, fields, point, n) for n in TRUTH_CELLS}
         w, approach, pc = got[TRUTH_CELLS[1]]
         print(f"\npoint {point}: W {w:.2f} N ({TRUTH_CELLS[0]} cells {got[TRUTH_CELLS[0]][0]:.2f}),"
-              f" W l / T {w * pc.lever_mm / (1e3 * TORQUE_NM):.3f}, approach "
+              f" W l / T {w * pc.lever_mm / fields.torque:.3f}, approach "
               f"{1e3 * approach:.4f} um ({1e3 * got[TRUTH_CELLS[0]][1]:.4f})")
-        if w * pc.lever_mm < 0.05e3 * TORQUE_NM:
+        if w * pc.lever_mm < 0.05 * fields.torque:
             continue
         error = abs(got[TRUTH_CELLS[0]][1] - approach) / abs(approach)
         out.append((point, w, approach, error, pc))
@@ -122,12 +125,14 @@ def test_tca_edge_rows_against_the_coupled_lcp(s0003_coast_twin, datum_points):
     assert all(abs(rel) <= bound for _, rel, bound in checks), checks
 
 
-def law_against_truth(pair, fields, points) -> list:
-    """``[(point, law / truth - 1, bound)]`` (module docstring)."""
+def law_against_truth(pair, fields, points, law_fields=None) -> list:
+    """``[(point, law / truth - 1, bound)]`` (module docstring); the law calibrated on
+    ``law_fields`` (the twin's table's, at its torque; default ``fields``)."""
+    law_fields = fields if law_fields is None else law_fields
     mats = (pair.pinion_material, pair.gear_material)
     checks = []
     for point, w, approach, mesh_error, pc in points:
-        law = row_law(fields, pc, materials=mats, torque_nmm=1e3 * TORQUE_NM, cache={})
+        law = row_law(law_fields, pc, materials=mats, torque_nmm=law_fields.torque, cache={})
         lo = law.loads_n[0]
         bound = (abs(law.low_local_exponent - law.low_exponent) * max(np.log(lo / w), 0.0)
                  + INTERPOLATION + mesh_error)
