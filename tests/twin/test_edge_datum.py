@@ -18,7 +18,11 @@ ltca.edge_rows.row_law` calibrated at 64.5 N·m, ``c(W) kappa W^(2/3)`` at that 
 
 Bound (declared, the datum work's: tests/twin/test_off_flank.py): 2 % + the LCP's mesh
 error (80 against 160 cells, relative) + ``|n_lo - low_exponent| ln(W_lo / W)`` below
-the least calibration load.
+the least calibration load. Measured (the law from the touch): +0.56 and +0.61 % against
+2.05 and 2.04 % (from the grid floor, before: +0.45 and -0.26 %).
+
+Slow: the declared extension to MITER_PAIR (the twin's table at 61 phases; the coupled
+LCP at 64.5 and 258 N·m).
 """
 
 import numpy as np
@@ -121,13 +125,41 @@ def test_tca_edge_rows_against_the_coupled_lcp(s0003_coast_twin, datum_points):
     fields, points = datum_points
     assert len(points) >= 2
     checks = law_against_truth(pair, fields, points)
-    print(f"largest |law - LCP| / bound {max(abs(r) / b for _, r, b in checks):.3f}")
-    assert all(abs(rel) <= bound for _, rel, bound in checks), checks
+    print(f"largest |law - LCP| / bound {max(abs(r) / b for _, r, b, _ in checks):.3f}")
+    assert not any(above for *_, above in checks)
+    assert all(abs(rel) <= bound for _, rel, bound, _ in checks), checks
+
+
+@pytest.mark.slow
+def test_miter_tca_edge_rows_against_the_coupled_lcp():
+    """The declared extension (docs/twin.md): MITER_PAIR (tests/design_space.py; drive,
+    61 phases, the twin's table at 64.5 N·m), the coupled LCP at 64.5 and 258 N·m; a point
+    whose load lies above the law's largest calibration load is reported, not judged.
+    Measured: 7 + 1 judged points within 0.62 of their bound (the approaching pinion-heel
+    row open by 3.48 um at 258 N·m: +2.9 % against 4.7 %; from the grid floor it was
+    -29.5 %). About 4 min."""
+    from design_space import MITER_PAIR, design_space_pair
+    from gearcontact.geometry.flank import build_flanks
+    from gearcontact.twin.mesh import pair_mesh_table
+
+    pair = design_space_pair(*MITER_PAIR)
+    tca, flanks, mesh = pair_mesh_table(pair, side="drive", torque_nm=TORQUE_NM, phases=61,
+                                        flanks=build_flanks(pair))
+    law_fields = table_fields(pair, tca, flanks, "drive", TORQUE_NM).fields
+    judged = []
+    for torque in (TORQUE_NM, 4.0 * TORQUE_NM):
+        fields, points = datum_points_of(pair, tca, flanks, mesh, torque)
+        judged += [c for c in law_against_truth(pair, fields, points, law_fields) if not c[3]]
+    print(f"{len(judged)} judged; largest |law - LCP| / bound "
+          f"{max(abs(r) / b for _, r, b, _ in judged):.3f}")
+    assert len(judged) >= 8
+    assert all(abs(rel) <= bound for _, rel, bound, _ in judged), judged
 
 
 def law_against_truth(pair, fields, points, law_fields=None) -> list:
-    """``[(point, law / truth - 1, bound)]`` (module docstring); the law calibrated on
-    ``law_fields`` (the twin's table's, at its torque; default ``fields``)."""
+    """``[(point, law / truth - 1, bound, above)]`` (module docstring; ``above``: the
+    load lies above the largest calibration load); the law calibrated on ``law_fields``
+    (the twin's table's, at its torque; default ``fields``)."""
     law_fields = fields if law_fields is None else law_fields
     mats = (pair.pinion_material, pair.gear_material)
     checks = []
@@ -144,5 +176,7 @@ def law_against_truth(pair, fields, points, law_fields=None) -> list:
               f"{1e3 * got:.4f} um against {1e3 * approach:.4f} um, {rel:+.4f}; bound "
               f"{bound:.4f} (mesh error {mesh_error:.4f}); loads {law.loads_n.round(1)} N, "
               f"c(W) {float(law.scale_at(w)):.4f}")
-        checks.append((point, rel, bound))
+        # a pair carrying the whole torque alone sits at the largest load itself (T / l),
+        # up to the mesh LCP's torque balance (1e-8 relative): 1e-6
+        checks.append((point, rel, bound, bool(w > law.loads_n[-1] * (1.0 + 1e-6))))
     return checks
