@@ -19,9 +19,9 @@ s0003 coast, F.2 or MITER_PAIR); the test guards the key.
 
 Truth: each row's field (gap, off-flank mask, grid, lever, frame, posed point) from a
 ``PairFields`` shared by both rows is the field the row gets from a ``PairFields`` of its
-own, exactly (the same computation, no arithmetic between). On the old key the second
-row got the first row's field (measured: the posed row's least gap 0.0 against its own
-field's, and the reverse).
+own, exactly (the same computation, no arithmetic between). On the old key (the path
+index alone) the test failed in both orders: the second row asked got the first row's
+field.
 """
 
 from dataclasses import replace
