@@ -32,14 +32,14 @@ from gearcontact.analytic.hertz import hamrock_brewe_hertz
 from gearcontact.halfspace.lcp import solve_lcp
 from gearcontact.ltca.edge_rows import row_law
 from gearcontact.ltca.flank_touch import flank_gaps_mm
-from gearcontact.ltca.mesh_lcp import PairBlock, solve_mesh_lcp
+from gearcontact.ltca.mesh_lcp import PairBlock
 from gearcontact.ltca.pair_ltca import OFF_FLANK_GAP_MM
 from gearcontact.ltca.patch_field import patch_grid
 
 from .conftest import TORQUE_NM
 from table_fields import table_fields
 
-from .test_off_flank import INTERPOLATION, _contacts
+from .test_off_flank import INTERPOLATION, coupled_column
 
 #: Truth cells per side of the edge row's field: the LCP at the finer, its mesh error the
 #: relative change from the coarser (module docstring).
@@ -75,22 +75,10 @@ def _truth_block(fields, pc, cells: int, materials) -> PairBlock:
 
 def _coupled(pair, tca, mesh, fields, point, cells):
     """``(load of the edge row (N), its approach l theta - g (mm), its contact)``."""
-    i, kk, k = point
     mats = (pair.pinion_material, pair.gear_material)
-    offsets = [tca.cycle.pair_offsets[j] for j in np.flatnonzero(mesh.valid[:, kk])]
-    blocks, target = [], None
-    for pc in _contacts(fields, tca, k):
-        if pc.offset not in offsets:
-            continue
-        if pc.offset == tca.cycle.pair_offsets[i]:
-            assert not pc.edge and fields.path.points[pc.path_index].edge_contact
-            target = (len(blocks), pc)
-            blocks.append(_truth_block(fields, pc, cells, mats))
-        else:
-            blocks.append(fields.block(pc, rigid=True)[0])
-    res = solve_mesh_lcp(blocks, fields.torque, materials=mats)
-    assert res.converged
-    j, pc = target
+    res, j, pc, blocks = coupled_column(fields, tca, mesh, point, mats,
+                                        lambda pc: _truth_block(fields, pc, cells, mats))
+    assert not pc.edge and fields.path.points[pc.path_index].edge_contact
     return float(res.pair_loads_n[j]), blocks[j].lever_mm * res.rotation_rad - pc.offset_mm, pc
 
 

@@ -33,8 +33,9 @@ Truths:
    corner row carrying 10 % with n = 0.54); the 7/60 pair (CHATTER_PAIR, slow) 13 rows
    within 1.4 % (before 3.4 % on its transmitting edge rows, 6.5-22 % on its
    approaching pair carrying 6-28 %); the miter pair of tests/design_space.py
-   (MITER_PAIR, slow; 31 phases) 3 rows within 0.02 % (at 61 phases the carrying
-   edge rows were -8.6 to +7.2 % before).
+   (MITER_PAIR, slow; 31 phases) 3 rows within 0.36-0.93 % (session 28, from the
+   touch; 0.02 % from the grid floor; at 61 phases the carrying edge rows were -8.6 to
+   +7.2 % before).
 2. *Torque balance*: at those equilibria ``sum_j W_j l_j = T`` to 1e-9 relative.
 3. *Continuity*: across every surface <-> edge switch of a pair the twin's approach
    coefficient changes by at most ``2^(2/3)``: a Hertzian patch cut through its centre
