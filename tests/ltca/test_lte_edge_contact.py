@@ -76,7 +76,7 @@ def test_edge_field_holds_the_touch(chatter):
                   if cycle.path.points[p.path_index].edge_contact and p.opening_arcsec == 0.0)
         mp = cycle.path.points[pc.path_index]
         gap, grid, off, _ = fields.get(pc)
-        axes = fields.frames[pc.path_index][1]
+        axes = fields.frames[pc.field_key][1]
         h_t = float(grid.dy_mm[0])
         rot1, rot2 = kin.pinion_pose(mp.phi1_rad)[0], kin.gear_pose(mp.phi2_rad)[0]
         b = -(curvature_tensor(pinion.point(mp.u1, mp.v1), rot1, axes[:, :2])

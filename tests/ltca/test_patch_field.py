@@ -88,7 +88,8 @@ def _check_convergence(pair, flanks, tca, side, *, posed: bool = True,
 
 
 def test_tca_edge_rows_converge_in_the_cells(s0003_calibrated, s0003_calibrated_tca):
-    """Truth 1 at the TCA's edge rows (tip, heel corner: 14 approaches within 0.6 %; about 15 s)."""
+    """Truth 1 at the TCA's edge rows (tip, heel corner: 14 approaches within 0.68 % from
+    their touch, session 28; 0.67 % from the grid floor; about 15 s)."""
     pair, flanks = s0003_calibrated
     errors = _check_convergence(pair, flanks, s0003_calibrated_tca, "coast", posed=False)
     print(f"s0003 TCA edge rows: {len(errors)} approaches, 40 vs 80 cells within "
@@ -138,7 +139,8 @@ def _miter(tmp_path):
 @pytest.mark.slow
 def test_edge_rows_converge_on_the_miter_pair(tmp_path):
     """Truth 1 on MITER_PAIR's transmitting pinion-root edge rows (the pair carrying the
-    whole torque; measured 9 approaches within 0.9 %). About 2 min."""
+    whole torque; measured 9 approaches within 1.43 % from their touch, session 28; 0.9 %
+    from the grid floor). About 2 min."""
     pair, flanks, tca = _miter(tmp_path)
     errors = _check_convergence(pair, flanks, tca, "drive", opening_max_mm=0.0)
     print(f"miter edge rows: {len(errors)} approaches, within {100 * max(errors):.2f} %")

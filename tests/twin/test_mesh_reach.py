@@ -125,7 +125,7 @@ def _scanned_touch_mm(fields, pc, *, n=241, keep=4, levels=4, side=25) -> float:
     from gearcontact.ltca.patch_field import _field
 
     pinion, _, kin = fields.args
-    mp, axes = fields.points[pc.path_index], fields.frames[pc.path_index][1]
+    mp, axes = fields.points[pc.field_key], fields.frames[pc.field_key][1]
     rot, c = kin.pinion_pose(mp.phi1_rad)
     (u0, u1), (v0, v1) = pinion.u_range, pinion.v_range
     us, vs = np.linspace(u0, u1, 60), np.linspace(v0, v1, 60)
@@ -284,8 +284,8 @@ class _OffField:
         gap, grid, off, lever = fields.get(pc)
         self.hit = (gap, grid, np.ones_like(off), lever)
         self.args, self.frames = fields.args, fields.frames
-        mp = fields.points[pc.path_index]
-        self.points = {pc.path_index: replace(mp, phi2_rad=mp.phi2_rad + turn_rad)}
+        mp = fields.points[pc.field_key]
+        self.points = {pc.field_key: replace(mp, phi2_rad=mp.phi2_rad + turn_rad)}
 
     def get(self, pc):
         return self.hit

@@ -129,9 +129,19 @@ def _truth_block(fields, pc, cells: int) -> PairBlock:
 def _truth(pair, tca, flanks, mesh, fields64, row, torque_nm, cells):
     """The coupled LCP at the row's phase: ``(theta, load of pair +1, lever, touch)`` and
     the twin's quasi-static load of pair +1 (the table's law, rigid)."""
-    i, kk, k = row
     mats = (pair.pinion_material, pair.gear_material)
     fields = _fields(pair, tca, flanks, 1e3 * torque_nm)
+    res, j, pc, blocks = coupled_column(fields, tca, mesh, row, mats,
+                                        lambda pc: _truth_block(fields64, pc, cells))
+    return res.rotation_rad, float(res.pair_loads_n[j]), blocks[j].lever_mm, pc
+
+
+def coupled_column(fields, tca, mesh, row, materials, target_block):
+    """The torque-constrained LCP (rigid) of the valid pairs of the row's table column at
+    ``fields.torque``: each pair on its loaded-TE field, the row's pair on
+    ``target_block(contact)``. Returns ``(result, the row's block index, its contact,
+    blocks)``."""
+    i, kk, k = row
     offsets = [tca.cycle.pair_offsets[j] for j in np.flatnonzero(mesh.valid[:, kk])]
     blocks, target = [], None
     for pc in _contacts(fields, tca, k):
@@ -139,13 +149,12 @@ def _truth(pair, tca, flanks, mesh, fields64, row, torque_nm, cells):
             continue
         if pc.offset == tca.cycle.pair_offsets[i]:
             target = (len(blocks), pc)
-            blocks.append(_truth_block(fields64, pc, cells))
+            blocks.append(target_block(pc))
         else:
             blocks.append(fields.block(pc, rigid=True)[0])
-    res = solve_mesh_lcp(blocks, 1e3 * torque_nm, materials=mats)
+    res = solve_mesh_lcp(blocks, fields.torque, materials=materials)
     assert res.converged
-    j, pc = target
-    return res.rotation_rad, float(res.pair_loads_n[j]), blocks[j].lever_mm, pc
+    return (res, *target, blocks)
 
 
 #: The cases the declared tolerance does not hold (docs/twin.md, measured): none. Row

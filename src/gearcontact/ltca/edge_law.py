@@ -30,17 +30,17 @@ row's closing datum, against a reference ``delta_ref(W_i)``:
   patch stays on the flanks the trimmed problem has the same solution and the row keeps
   ``c = 1`` exactly (:func:`trim_compliance`).
 
-*Grid floor.* At an edge contact of the TCA the opening ``g`` is the exact touch of
-the edge, but the field's nodes lie half a cell and more inside the edge: its least gap
-on the flank sits ``e`` above ``g``, and ``delta_LCP - g`` carries ``e`` as a false
-compliance, largest at small loads. The datum of the TCA's edge rows is therefore that
-least gap (:func:`edge_datum_mm`): the LCP's approach from its own touch. A posed-field
-row's opening is the touch of its posed flanks searched over the whole flank
-(:func:`.patch_field.touch_gap_mm`), the true first contact from which the coupled LCP
-counts too; it is that row's datum (its fitted fields resolve the patch in many cells,
-whose centred gaps are the cells' means: the LCP's approach is counted in the gap's own
-coordinates, zero at the touch; docs/twin.md, "Posed rows: the approach counted from the
-searched touch").
+*Datum.* Every edge row counts its LCP approach from its opening ``g``, its true first
+contact (:func:`edge_datum_mm`): at an edge contact of the TCA the exact touch of the
+edge, at a posed-field row the touch of its posed flanks searched over the whole flank
+(:func:`.patch_field.touch_gap_mm`); the coupled LCP counts from the same ``g``. The
+approach is taken on fields fitted to the patch (below), whose cells resolve it: the
+first cell's centred gap, half a cell inside an edge, is the cell's mean of a gap rising
+linearly from the edge, so the LCP's approach is in the gap's own coordinates, zero at
+the touch. (Sessions 15-27 counted the TCA's edge rows from the least gap of the last
+fitted field, the "grid floor", introduced on unfitted 40-cell fields; against the
+coupled LCP both datums are within the declared bound on s0003 coast's edge rows:
+docs/twin.md, "The TCA's edge rows: the approach from the touch?".)
 
 *Patch resolution.* The loaded TE's field of an edge row is sized by the ellipse of the
 whole torque; the patch at an edge is a strip a few of its cells across (s0003 coast's
@@ -241,13 +241,11 @@ def trim_compliance(fields, pc, *, materials, torque_nmm: float) -> EdgeComplian
 
 
 def edge_datum_mm(gap, off, pc) -> float:
-    """The closing datum of an edge row's LCP approach (mm): of a posed-field row
-    (``pc.edge``, wholly off the flank or not) its opening, the searched touch; of the
-    TCA's edge row the least gap of its field on the flank, or the row's opening if that
-    is larger (module docstring, "grid floor")."""
-    if pc.edge or not (~off).any():
-        return pc.offset_mm
-    return max(pc.offset_mm, float(gap[~off].min()))
+    """The closing datum of an edge row's LCP approach (mm): its opening ``pc.offset_mm``,
+    the row's true first contact (module docstring, "Datum"), whatever the field
+    (``gap``, ``off``: the field the approach was solved on, for callers that pass a
+    datum rule to :func:`.patch_field.patch_approach`)."""
+    return pc.offset_mm
 
 
 def _loads(pc, torque_nmm: float) -> np.ndarray:

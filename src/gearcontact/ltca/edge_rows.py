@@ -80,11 +80,12 @@ def row_law(fields: PairFields, pc: PairContact, *, materials, torque_nmm: float
     torque_nmm : float
         Gear torque that sets the calibration loads, N·mm.
     cache : dict
-        ``(path index, centre index)`` -> EdgeCompliance or None.
+        :attr:`~.lte_pairs.PairContact.field_key` ``(path index, centre index)`` ->
+        EdgeCompliance or None.
     """
     if is_edge_row(fields, pc) and is_wholly_off(fields, pc):
         return touch_law(fields, pc, materials=materials, torque_nmm=torque_nmm)
-    key = (pc.path_index, pc.center_index)
+    key = pc.field_key
     if key not in cache:
         law = edge_compliance if is_edge_row(fields, pc) else trim_compliance
         try:

@@ -72,8 +72,8 @@ def flank_gaps_mm(fields, pc, s_mm, t_mm) -> np.ndarray:
     """Gap (mm) of the row's posed flanks at plane points ``(s_mm, t_mm)`` of its frame
     (any equal shapes), ``inf`` off the flank."""
     pinion, gear, kin = fields.args
-    f = gap_at(pinion, gear, kin, fields.points[pc.path_index], s_mm, t_mm, frame="patch",
-               axes=fields.frames[pc.path_index][1], allow_outside=True)
+    f = gap_at(pinion, gear, kin, fields.points[pc.field_key], s_mm, t_mm, frame="patch",
+               axes=fields.frames[pc.field_key][1], allow_outside=True)
     return np.where(f.on_flank, f.gap_mm, np.inf)
 
 
@@ -81,7 +81,7 @@ def _edges(fields, pc):
     """The 8 edges as ``(surface, rotation, centre, fixed axis, fixed value)``: the
     pinion's and the gear's boxes, each at both ends of ``u`` and of ``v``, nudged in."""
     pinion, gear, kin = fields.args
-    mp = fields.points[pc.path_index]
+    mp = fields.points[pc.field_key]
     out = []
     for surf, (rot, c) in ((pinion, kin.pinion_pose(mp.phi1_rad)),
                            (gear, kin.gear_pose(mp.phi2_rad))):
@@ -98,8 +98,8 @@ def _edge_points(fields, pc, edge, w) -> np.ndarray:
     free = lo + (hi - lo) * np.asarray(w, float)
     uv = [(fixed, x) if axis == 0 else (x, fixed) for x in free]
     r = np.array([surf.point(u, v).r for u, v in uv]) @ rot.T + c
-    axes = fields.frames[pc.path_index][1]
-    return (r - fields.points[pc.path_index].point_mm) @ axes[:, :2]
+    axes = fields.frames[pc.field_key][1]
+    return (r - fields.points[pc.field_key].point_mm) @ axes[:, :2]
 
 
 def _rises(g: np.ndarray) -> np.ndarray:

@@ -82,13 +82,22 @@ class PairContact:
         return self.center_index != self.path_index
 
     @property
+    def field_key(self) -> tuple[int, int]:
+        """The identity of the pair's field in :class:`PairFields`: ``(path_index,
+        center_index)``. Pairs at the pitch ends share a path index; a posed-field row
+        (its field centred on another state) and a row on its own state at one path
+        index have different fields."""
+        return self.path_index, self.center_index
+
+    @property
     def offset_mm(self) -> float:
         """Initial separation along the normal, mm."""
         return self.opening_arcsec / ARCSEC_PER_RAD * self.lever_mm
 
 
 class PairFields:
-    """Gap fields per TCA path index (pairs at the pitch ends share them).
+    """Gap fields per pair field (:attr:`PairContact.field_key`: the path index and the
+    field's centre; pairs at the pitch ends share them).
 
     Every field is the separation of the flanks posed as they stand unloaded (gear at
     ``pc.phi2_rad``), along the normal lines of the tangent plane at the centre point:
@@ -104,20 +113,21 @@ class PairFields:
         self.path = cycle.path
         self.torque, self.e_prime, self.cells, self.extent = torque_nmm, e_prime, cells, extent
         self.bending = bending
-        self.cache: dict[int, tuple] = {}
-        self.factors: dict[int, np.ndarray] = {}
-        self._posed: dict[int, tuple] = {}  # (field, posed point) awaiting a factor
-        #: (origin (3,), frame (3, 3): columns e_s, e_t, n) of each field, meshing frame
-        self.frames: dict[int, tuple] = {}
+        self.cache: dict[tuple[int, int], tuple] = {}
+        self.factors: dict[tuple[int, int], np.ndarray] = {}
+        self._posed: dict[tuple[int, int], tuple] = {}  # (field, posed point) awaiting a factor
+        #: (origin (3,), frame (3, 3): columns e_s, e_t, n) of each field, meshing frame,
+        #: by :attr:`PairContact.field_key`
+        self.frames: dict[tuple[int, int], tuple] = {}
         #: the posed mating point each field was evaluated around (:mod:`.patch_field`)
-        self.points: dict[int, MatingPoint] = {}
-        self._touch: dict[int, float] = {}   # refined openings of edge pairs
-        self._settled: dict[int, bool] = {}  # ... whose search settled (a lower bound)
+        self.points: dict[tuple[int, int], MatingPoint] = {}
+        self._touch: dict[tuple[int, int], float] = {}   # refined openings of edge pairs
+        self._settled: dict[tuple[int, int], bool] = {}  # ... whose search settled
         self.seconds = 0.0
 
     def get(self, pc: PairContact):
         """(gap, grid, off-flank mask, lever) of a pair contact."""
-        hit = self.cache.get(pc.path_index)
+        hit = self.cache.get(pc.field_key)
         if hit is None:
             t0 = time.perf_counter()
             pinion, gear, kin = self.args
@@ -146,11 +156,11 @@ class PairFields:
                                        x0_mm=float(s_axis[0]), y0_mm=float(t_axis[0]))
             lever = torque_lever_mm(mp.point_mm, mp.normal)
             hit = (np.where(off, OFF_FLANK_GAP_MM, f.gap_mm), grid, off, lever)
-            self.cache[pc.path_index] = hit
-            self.frames[pc.path_index] = (f.origin_mm, f.frame)
-            self.points[pc.path_index] = mp
+            self.cache[pc.field_key] = hit
+            self.frames[pc.field_key] = (f.origin_mm, f.frame)
+            self.points[pc.field_key] = mp
             if self.bending is not None:  # its factor when a solve first needs it
-                self._posed[pc.path_index] = (f, mp)
+                self._posed[pc.field_key] = (f, mp)
             self.seconds += time.perf_counter() - t0
         return hit
 
@@ -178,11 +188,11 @@ class PairFields:
         if self.bending is None:
             return None
         self.get(pc)
-        hit = self.factors.get(pc.path_index)
+        hit = self.factors.get(pc.field_key)
         if hit is None:
             t0 = time.perf_counter()
-            hit = self.factors[pc.path_index] = self._bending_factor(
-                *self._posed.pop(pc.path_index))
+            hit = self.factors[pc.field_key] = self._bending_factor(
+                *self._posed.pop(pc.field_key))
             self.seconds += time.perf_counter() - t0
         return hit
 
@@ -210,9 +220,9 @@ class PairFields:
         if not pc.edge:
             return pc
         lever = self.get(pc)[3]
-        if pc.path_index not in self._touch:
-            self._touch[pc.path_index], self._settled[pc.path_index] = touch_search(self, pc)
-        opening = self._touch[pc.path_index] / lever * ARCSEC_PER_RAD
+        if pc.field_key not in self._touch:
+            self._touch[pc.field_key], self._settled[pc.field_key] = touch_search(self, pc)
+        opening = self._touch[pc.field_key] / lever * ARCSEC_PER_RAD
         return replace(pc, opening_arcsec=opening, lever_mm=lever)
 
     def bound(self, pc: PairContact) -> tuple[PairContact, float]:
@@ -226,14 +236,14 @@ class PairFields:
         if not pc.edge:
             return pc, pc.offset_mm
         lever = self.get(pc)[3]
-        if pc.path_index not in self._touch:
+        if pc.field_key not in self._touch:
             lower, upper = touch_bounds_mm(self, pc)
             if lower > -np.inf:
                 return replace(pc, opening_arcsec=upper / lever * ARCSEC_PER_RAD,
                                lever_mm=lever), lower
         pc = self.resolve(pc)
-        settled = self._settled[pc.path_index]
-        return pc, (self._touch[pc.path_index] if settled else -np.inf)
+        settled = self._settled[pc.field_key]
+        return pc, (self._touch[pc.field_key] if settled else -np.inf)
 
 
 def curvature_point(path, center: int):

@@ -381,7 +381,7 @@ def multi_tooth_ltca(tca, flanks, pair, torque_nm: float, *, side: str | None = 
         load = float(w.sum())
         if load <= ACTIVE_SHARE * total and rigid_load.get(pc.offset, 0.0) <= 0.0:
             continue
-        origin, frame = fields.frames[pc.path_index]
+        origin, frame = fields.frames[pc.field_key]
         engaged.append(EngagedPair(
             offset=pc.offset, lever_mm=float(b.lever_mm), opening_arcsec=float(pc.opening_arcsec),
             edge=pc.edge, load_n=load, load_rigid_n=rigid_load.get(pc.offset, 0.0),

@@ -156,8 +156,8 @@ class TouchField:
         if self.bending is None:
             return None
         f = SimpleNamespace(s_mm=self.s_mm, t_mm=self.t_mm, gap_mm=self.field[0],
-                            frame=self.frames[pc.path_index][1])
-        return self._fields._bending_factor(f, self.points[pc.path_index])
+                            frame=self.frames[pc.field_key][1])
+        return self._fields._bending_factor(f, self.points[pc.field_key])
 
 
 def touch_field(fields, pc, *, torque_nmm: float) -> TouchField | None:

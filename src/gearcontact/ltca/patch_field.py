@@ -101,9 +101,9 @@ def patch_grid(box, cells: int) -> tuple[np.ndarray, np.ndarray, TangentGrid]:
 def _field(fields, pc, s_axis, t_axis):
     """(gap with off-flank cells lifted, off-flank mask) on the row's frame."""
     pinion, gear, kin = fields.args
-    _, frame = fields.frames[pc.path_index]
+    _, frame = fields.frames[pc.field_key]
     s, t = np.meshgrid(s_axis, t_axis)
-    f = gap_at(pinion, gear, kin, fields.points[pc.path_index], s, t, frame="patch",
+    f = gap_at(pinion, gear, kin, fields.points[pc.field_key], s, t, frame="patch",
                axes=frame, allow_outside=True)
     off = ~f.on_flank
     return np.where(off, OFF_FLANK_GAP_MM, f.gap_mm), off
