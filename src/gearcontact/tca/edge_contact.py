@@ -381,8 +381,27 @@ def _edge_extreme(solver: _EdgeSolver, forward: bool, sampled) -> tuple[float, n
     # the last contact are closer together than the extreme may have moved)
     lo, hi = edge_span(solver.own, solver.edge.name)
     h = (hi - lo) / (EDGE_SAMPLES - 1)
-    a, b = max(ss[k] - h, lo), min(ss[k] + h, hi)
     y_best = ys[k]
+    # where a bracket end touches beyond the other flank (or not at all), the extreme can
+    # be the crossing of the two flanks' boundaries: its point (margin 0) by Brent's root
+    # search; and the bracket ends there, so that the 1-D search sees only touching points
+    # (an infeasible stretch is a plateau that draws the bounded search away from the
+    # extreme: the 13/26 drive's pinion heel, docs/machine_settings.md sec. 5)
+    candidates = [(ss[k], y_best)]
+    ends = []
+    for end in (max(ss[k] - h, lo), min(ss[k] + h, hi)):
+        if end == ss[k] or solver.feasible(solver.solve(end, y_best)):
+            ends.append(end)
+            if end != ss[k]:
+                candidates.append((end, solver.solve(end, y_best)))
+            continue
+        crossing = _boundary_crossing(solver, ss[k], end, y_best)
+        if crossing is not None:
+            candidates.append(crossing)
+            ends.append(crossing[0])
+        else:
+            ends.append(_last_touching(solver, ss[k], end, y_best))
+    a, b = sorted(ends)
     cache = {}
 
     def objective(s):
@@ -391,22 +410,30 @@ def _edge_extreme(solver: _EdgeSolver, forward: bool, sampled) -> tuple[float, n
         # infeasible points (beyond the other flank) rank below the best sample
         return -sign * y[2] if solver.feasible(y) else -score[k] + 1.0
 
-    opt = minimize_scalar(objective, bounds=(a, b), method="bounded",
-                          options={"xatol": 1e-5})
-    s_opt = float(opt.x)
-    y_opt = cache[s_opt] if s_opt in cache else solver.solve(s_opt, y_best)
-    # the bounded search never evaluates the bracket ends: an extreme at an end of the
-    # edge (a corner contact) is the end sample itself
-    candidates = [(s_opt, y_opt), (ss[k], y_best)]
-    # where a neighbour sample touches beyond the other flank, the extreme can be the
-    # crossing of the two flanks' boundaries: its point (margin 0) by Brent's root search
-    for end in (a, b):
-        if end != ss[k] and not solver.feasible(solver.solve(end, y_best)):
-            crossing = _boundary_crossing(solver, ss[k], end, y_best)
-            if crossing is not None:
-                candidates.append(crossing)
+    if b > a:
+        opt = minimize_scalar(objective, bounds=(a, b), method="bounded",
+                              options={"xatol": 1e-5})
+        s_opt = float(opt.x)
+        # the bounded search never evaluates the bracket ends: an extreme at an end of
+        # the edge (a corner contact) is the end sample itself
+        candidates.append((s_opt, cache[s_opt] if s_opt in cache
+                           else solver.solve(s_opt, y_best)))
     candidates = [(sv, y) for sv, y in candidates if solver.feasible(y)]
     return max(candidates, key=lambda sy: sign * sy[1][2])
+
+
+def _last_touching(solver: _EdgeSolver, s_in: float, s_out: float, y_in: np.ndarray,
+                   *, steps: int = 40) -> float:
+    """The edge point nearest ``s_out`` that still touches the other flank, between
+    ``s_in`` (touching) and ``s_out`` (not: its Newton solve fails), by bisection on
+    feasibility (``steps`` halvings)."""
+    for _ in range(steps):
+        mid = 0.5 * (s_in + s_out)
+        if solver.feasible(solver.solve(mid, y_in)):
+            s_in = mid
+        else:
+            s_out = mid
+    return s_in
 
 
 def _margin(surface: Surface, y: np.ndarray) -> float:
