@@ -223,21 +223,15 @@ def _e0_pair():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("side", [
-    pytest.param("drive", marks=pytest.mark.xfail(strict=True, reason=(
-        "differs: TE0 p-p 0.712 arcsec against the bound 0.532. The TCA's pair-2 path at "
-        "phases 2-3 of 31 (TE0 0.772, 0.948: a pinion-heel edge contact) is not a first "
-        "touch: at that pose the pinion point (3.18, 81.73) mm lies 5.6e-5 mm inside the "
-        "gear (an interior foot at gear (8.50, 11.36) mm), and the next pair's contact "
-        "line meets the pinion heel near the root with m 0.573 arcsec (TE0 <= 0.30). "
-        "Without those two phases the TCA's p-p is 0.507 (docs sec. 5)"))),
-    "coast"])
+@pytest.mark.parametrize("side", ["drive", "coast"])
 def test_the_13_26_pair_is_within_its_bound_on_the_contact_lines(side):
     # (d) on the 13/26 at E 0 (its standard generated gear, 2C +-0.05; the table of docs
     # sec. 5), library TCA at the CLI's 120 x 150 nodes, 31 phases: TE0 p-p at most the
     # bound on the contact lines + 1e-4 arcsec (the TCA's conjugacy tolerance). Measured
-    # drive 0.712 against 0.532 (differs, the reason above), coast 0.880 against 1.545
-    # (session 26's flank-wide bound 19.03)
+    # drive 0.5074 against 0.5321, coast 0.880 against 1.545 (session 26's flank-wide
+    # bound 19.03). The drive was a strict xfail at 0.712 until the TCA's edge search
+    # found the pinion heel's first touch at phases 2-3 (0.306, 0.399 arcsec, not 0.772,
+    # 0.948; tests/tca/test_edge_touching_stretch.py against a brute-force search)
     from gearcontact.tca.analysis import analyze_pair
 
     pair = _e0_pair()

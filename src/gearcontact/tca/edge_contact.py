@@ -17,7 +17,8 @@ method with the analytic Jacobian ``[r_a, r_b, -w_2 x (X_2 - c_2)]``). The conta
 extreme of ``phi2(s)`` over the edge in the direction the gear is pushed (the first
 point to touch; the same rule that picks the transmitting pair of the envelope in
 :mod:`gearcontact.tca.mesh`): a bounded 1-D minimisation (Brent) after sampling the
-edge. At an interior extreme ``d phi2 / ds = 0``, i.e. the edge tangent lies in the
+edge, over the edge points that touch the other flank only (a bracket end beyond its
+boundary is moved to the crossing). At an interior extreme ``d phi2 / ds = 0``, i.e. the edge tangent lies in the
 touched surface's tangent plane; at an end of the edge the contact is a corner. When the
 surface mating point reaches the edge from inside, it satisfies both systems, so the
 edge solution continues the surface one with continuous TE0 (tested).
@@ -373,7 +374,9 @@ def _edge_samples(solver: _EdgeSolver, guess: ContactGuess, forward: bool,
 
 def _edge_extreme(solver: _EdgeSolver, forward: bool, sampled) -> tuple[float, np.ndarray]:
     """``(s, y)`` of the first point of one edge to touch: the best sample refined by a
-    bounded Brent search between its neighbours."""
+    bounded Brent search one even sample spacing either side of it, over the stretch of
+    the edge that touches the other flank (a bracket end that does not is moved to the
+    boundary crossing, or to the last touching point)."""
     _, ss, score, ys = sampled
     sign = 1.0 if forward else -1.0
     k = int(np.argmax(score))
@@ -385,7 +388,7 @@ def _edge_extreme(solver: _EdgeSolver, forward: bool, sampled) -> tuple[float, n
     # where a bracket end touches beyond the other flank (or not at all), the extreme can
     # be the crossing of the two flanks' boundaries: its point (margin 0) by Brent's root
     # search; and the bracket ends there, so that the 1-D search sees only touching points
-    # (an infeasible stretch is a plateau that draws the bounded search away from the
+    # (an untouching stretch is a plateau that drew the bounded search away from the
     # extreme: the 13/26 drive's pinion heel, docs/machine_settings.md sec. 5)
     candidates = [(ss[k], y_best)]
     ends = []
