@@ -83,6 +83,16 @@ def test_the_extreme_on_a_short_touching_stretch_is_its_vertex(monkeypatch, beyo
     assert 0.0 <= y[2] <= CURVE * 1e-10
 
 
+def test_the_last_touching_point_where_no_crossing_is_found():
+    # the bracket's fallback where the boundary crossing's root search finds none: the
+    # last touching point by bisection, 40 halvings of the 0.5 mm between the best
+    # sample and the untouching end (5e-13 mm)
+    solver = _stub_solver("none")(_Own(), _Other(), None, 0.0, FlankEdge("pinion", "heel"),
+                                  tol_mm=1e-10, max_iter=15)
+    s = edge_contact._last_touching(solver, 3.2, 3.7, np.zeros(3))
+    assert STRETCH_END - 0.5 / 2 ** 40 <= s <= STRETCH_END
+
+
 # ----------------------------------------------------------------------------- slow
 
 #: The TE0 tolerance against the brute force, arcsec: the TCA's conjugacy tolerance of

@@ -18,10 +18,11 @@ extreme of ``phi2(s)`` over the edge in the direction the gear is pushed (the fi
 point to touch; the same rule that picks the transmitting pair of the envelope in
 :mod:`gearcontact.tca.mesh`): a bounded 1-D minimisation (Brent) after sampling the
 edge, over the edge points that touch the other flank only (a bracket end beyond its
-boundary is moved to the crossing). At an interior extreme ``d phi2 / ds = 0``, i.e. the edge tangent lies in the
-touched surface's tangent plane; at an end of the edge the contact is a corner. When the
-surface mating point reaches the edge from inside, it satisfies both systems, so the
-edge solution continues the surface one with continuous TE0 (tested).
+boundary is moved to the crossing). At an interior extreme ``d phi2 / ds = 0``, i.e.
+the edge tangent lies in the touched surface's tangent plane; at an end of the edge the
+contact is a corner. When the surface mating point reaches the edge from inside, it
+satisfies both systems, so the edge solution continues the surface one with continuous
+TE0 (tested).
 
 The result is a :class:`~gearcontact.tca.types.MatingPoint` whose ``edge_contact`` names
 the edge (``"pinion toe"``) and whose ``normal`` is the touched surface's normal
