@@ -250,7 +250,9 @@ def test_the_13_26_pair_is_within_its_bound_on_the_contact_lines(side):
     "conjugate's tip-side edge (u 4.40 mm, the line the gear root generates), and the gear's "
     "root edge touches it there (u 4.42-4.49 mm) at 26 of 31 phases: outside the common "
     "box the bound's upper term covers (docs sec. 5; the amendment over the whole box, "
-    "747 arcsec, not adopted)"))
+    "747 arcsec, not adopted). A brute-force first touch (session 28) gives 5.812: the "
+    "TCA's pair 1 stays on an interior surface contact at phases 2-7 while the gear's "
+    "root edge touches first, and 5.812 still exceeds the bound"))
 def test_a_refitted_pinion_past_the_conjugates_box_differs(f2_generated):
     # (d) on the refitted 2C 0.05 + 6D 1.0 (F.2's generated drive gear), uncrowned,
     # library TCA at 120 x 150 nodes, 31 phases, + 1e-4 arcsec (the TCA's tolerance)
