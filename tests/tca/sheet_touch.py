@@ -18,8 +18,9 @@ towards +phi2 on the largest: :mod:`gearcontact.tca.mesh`) is the extreme over d
 samples of the pinion's whole box (interior and its four boundary curves) and of the
 gear's four boundary curves (a gear interior point touching the pinion interior is the
 same contact as the pinion point it touches), each sample set zoomed eight times about
-its best sample (41 samples over +-3 spacings). A point beyond the other sheet's box
-touches nothing.
+its best sample (41 samples over +-3 spacings; a 2-D window is moved without
+shrinking while its best sample lies on its outer ring). A point beyond the other
+sheet's box touches nothing.
 """
 
 from __future__ import annotations
@@ -29,8 +30,10 @@ import numpy as np
 #: Samples of the pinion box (profile x lengthwise) and of each boundary curve.
 GRID = (150, 200)
 EDGE_POINTS = 2000
-#: Zoom levels about the best sample and the well-separated interior seeds zoomed.
+#: Zoom levels about the best sample, the moves of a window a level and the
+#: well-separated interior seeds zoomed.
 ZOOMS = 8
+MOVES = 50
 SEEDS = 4
 #: Bisection window about the given gear turn (rad) and its halvings.
 WINDOW_RAD = 3e-4
@@ -109,18 +112,26 @@ def _grid(box, n_u, n_v):
 
 
 def _zoom(f, box, u, v, best, sign):
-    """Zoom a 2-D sample about ``best`` (u, v, turn) ``ZOOMS`` times."""
+    """Zoom a 2-D sample about ``best`` (u, v, turn) ``ZOOMS`` times: a window of +-3
+    spacings, 41 x 41 samples, moved without shrinking while its best sample lies on its
+    outer ring inside the box (a long flat valley, nearly a contact line), at most
+    ``MOVES`` times a level."""
     h = ((box[1] - box[0]) / (u - 1), (box[3] - box[2]) / (v - 1))
     uc, vc, turn = best
     for _ in range(ZOOMS):
-        sub = (max(box[0], uc - 3 * h[0]), min(box[1], uc + 3 * h[0]),
-               max(box[2], vc - 3 * h[1]), min(box[3], vc + 3 * h[1]))
-        uu, vv = _grid(sub, 41, 41)
-        t = f(uu, vv)
-        if not np.isfinite(t).any() or np.nanmax(sign * t) < sign * turn:
-            break
-        j = np.unravel_index(np.nanargmax(sign * t), uu.shape)
-        uc, vc, turn = float(uu[j]), float(vv[j]), float(t[j])
+        for _ in range(MOVES):
+            sub = (max(box[0], uc - 3 * h[0]), min(box[1], uc + 3 * h[0]),
+                   max(box[2], vc - 3 * h[1]), min(box[3], vc + 3 * h[1]))
+            uu, vv = _grid(sub, 41, 41)
+            t = f(uu, vv)
+            if not np.isfinite(t).any() or np.nanmax(sign * t) < sign * turn:
+                return uc, vc, turn
+            j = np.unravel_index(np.nanargmax(sign * t), uu.shape)
+            uc, vc, turn = float(uu[j]), float(vv[j]), float(t[j])
+            ring = (j[0] in (0, 40) and uc not in box[:2]) or (j[1] in (0, 40)
+                                                               and vc not in box[2:])
+            if not ring:
+                break
         h = ((sub[1] - sub[0]) / 40, (sub[3] - sub[2]) / 40)
     return uc, vc, turn
 
@@ -164,7 +175,8 @@ def first_touch(pinion, gear, kin, phi1_rad: float, *, near_rad: float,
                              ("gear", gear, touch.gear_point)):
         for name, curve, lo, hi in _edge_curves(_box(sheet)):
             s, best = np.linspace(lo, hi, EDGE_POINTS), None
-            for _ in range(ZOOMS):
+            level = moves = 0
+            while level < ZOOMS:
                 u, v = curve(s)
                 t = f(u, v, near_rad)
                 if not np.isfinite(t).any():
@@ -174,7 +186,12 @@ def first_touch(pinion, gear, kin, phi1_rad: float, *, near_rad: float,
                     best = dict(where=f"{member} {name}", u=float(u[i]), v=float(v[i]),
                                 phi2_rad=float(t[i]))
                 ds = s[1] - s[0]
-                s = np.linspace(max(lo, s[i] - 3 * ds), min(hi, s[i] + 3 * ds), 41)
+                # a best sample at the window's end inside the curve: moved, not shrunk
+                if s.size == 41 and i in (0, 40) and s[i] not in (lo, hi) and moves < MOVES:
+                    moves, half = moves + 1, 20 * ds
+                else:
+                    level, moves, half = level + 1, 0, 3 * ds
+                s = np.linspace(max(lo, s[i] - half), min(hi, s[i] + half), 41)
             if best is not None:
                 found.append(best)
     return sorted(found, key=lambda r: -sign * r["phi2_rad"])
