@@ -224,27 +224,24 @@ def _e0_pair():
 
 @pytest.mark.slow
 @pytest.mark.parametrize("side", [
-    pytest.param("drive", marks=pytest.mark.xfail(strict=True, reason=(
-        "differs: TE0 p-p 0.616 arcsec against the bound 0.501 (session 28's pinion, fitted "
-        "at exact nodes; session 27's: 0.712 against 0.532). The TCA's pair-2 path jumps at "
-        "phase 2 of 31 (TE0 0.269, 0.921, 0.432 at phases 1-3, a gear-heel / pinion-heel "
-        "edge): one pair's TE0, a first touch over fixed flanks, is continuous in the "
-        "phase, so the TCA lost pair 2's first touch there and pair 1 carries 0.616 "
-        "(session 27: that state was 5.6e-5 mm inside the gear; docs sec. 5)"))),
+    "drive",
     pytest.param("coast", marks=pytest.mark.xfail(strict=True, reason=(
         "differs: TE0 p-p 0.989 arcsec against the bound 0.534 (session 28's pinion, fitted "
         "at exact nodes; session 27's held, 0.880 against 1.545). The TCA's pair -1 path "
-        "jumps from -0.410 to -1.637 arcsec between phases 23 and 24 of 31 (at 61 phases "
-        "-0.426 to -1.650 between 48 and 49): one pair's TE0, a first touch over fixed "
-        "flanks, is continuous in the phase, so the TCA lost pair -1's first touch and "
-        "pair 0's gear-heel edge carries -0.72 to -0.99 at phases 24-29 (docs sec. 5)")))])
+        "jumps from -0.410 to -1.637 arcsec between phases 23 and 24 of 31: while the "
+        "surface contact point lies inside both flanks the TCA does not ask whether an "
+        "edge touches first, and on session 27's pinion a brute-force first touch gives "
+        "0.492, not 0.880 (the pinion toe near its tip; tests/tca/sheet_touch.py, "
+        "docs sec. 5)")))])
 def test_the_13_26_pair_is_within_its_bound_on_the_contact_lines(side):
     # (d) on the 13/26 at E 0 (its standard generated gear, 2C +-0.05; the table of docs
     # sec. 5), library TCA at the CLI's 120 x 150 nodes, 31 phases: TE0 p-p at most the
     # bound on the contact lines + 1e-4 arcsec (the TCA's conjugacy tolerance). Measured
-    # (session 28) drive 0.616 against 0.501, coast 0.989 against 0.534: both differ
-    # through a jump of the TCA's path (the reasons above); session 27: drive 0.712
-    # against 0.532, coast 0.880 against 1.545
+    # (session 28, the pinion fitted at exact nodes and the TCA's edge search finding the
+    # pinion heel's first touch, tests/tca/test_edge_touching_stretch.py against a
+    # brute-force search) drive 0.432 against 0.501; coast 0.989 against 0.534 (the
+    # reason above). Session 27's pinion with the fixed TCA: drive 0.5074 against 0.5321
+    # (a strict xfail at 0.712 before the edge-search fix), coast 0.880 against 1.545
     from gearcontact.tca.analysis import analyze_pair
 
     pair = _e0_pair()
@@ -264,7 +261,10 @@ def test_the_13_26_pair_is_within_its_bound_on_the_contact_lines(side):
     "the gear root generates), and the gear's root edge touches it there (u 4.43-4.49 mm) "
     "at 21 of 31 phases: outside the common "
     "box the bound's upper term covers (docs sec. 5; the amendment over the whole box, "
-    "747 arcsec, not adopted)"))
+    "747 arcsec, not adopted). A brute-force first touch on session 27's pinion gives "
+    "5.812 against its bound 5.660: the TCA's pair 1 stays on an interior surface "
+    "contact at phases 2-7 while the gear's root edge touches first, and 5.812 still "
+    "exceeds the bound"))
 def test_a_refitted_pinion_past_the_conjugates_box_differs(f2_generated):
     # (d) on the refitted 2C 0.05 + 6D 1.0 (F.2's generated drive gear), uncrowned,
     # library TCA at 120 x 150 nodes, 31 phases, + 1e-4 arcsec (the TCA's tolerance)

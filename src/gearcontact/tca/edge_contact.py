@@ -17,10 +17,12 @@ method with the analytic Jacobian ``[r_a, r_b, -w_2 x (X_2 - c_2)]``). The conta
 extreme of ``phi2(s)`` over the edge in the direction the gear is pushed (the first
 point to touch; the same rule that picks the transmitting pair of the envelope in
 :mod:`gearcontact.tca.mesh`): a bounded 1-D minimisation (Brent) after sampling the
-edge. At an interior extreme ``d phi2 / ds = 0``, i.e. the edge tangent lies in the
-touched surface's tangent plane; at an end of the edge the contact is a corner. When the
-surface mating point reaches the edge from inside, it satisfies both systems, so the
-edge solution continues the surface one with continuous TE0 (tested).
+edge, over the edge points that touch the other flank only (a bracket end beyond its
+boundary is moved to the crossing). At an interior extreme ``d phi2 / ds = 0``, i.e.
+the edge tangent lies in the touched surface's tangent plane; at an end of the edge the
+contact is a corner. When the surface mating point reaches the edge from inside, it
+satisfies both systems, so the edge solution continues the surface one with continuous
+TE0 (tested).
 
 The result is a :class:`~gearcontact.tca.types.MatingPoint` whose ``edge_contact`` names
 the edge (``"pinion toe"``) and whose ``normal`` is the touched surface's normal
@@ -373,7 +375,9 @@ def _edge_samples(solver: _EdgeSolver, guess: ContactGuess, forward: bool,
 
 def _edge_extreme(solver: _EdgeSolver, forward: bool, sampled) -> tuple[float, np.ndarray]:
     """``(s, y)`` of the first point of one edge to touch: the best sample refined by a
-    bounded Brent search between its neighbours."""
+    bounded Brent search one even sample spacing either side of it, over the stretch of
+    the edge that touches the other flank (a bracket end that does not is moved to the
+    boundary crossing, or to the last touching point)."""
     _, ss, score, ys = sampled
     sign = 1.0 if forward else -1.0
     k = int(np.argmax(score))
@@ -381,8 +385,27 @@ def _edge_extreme(solver: _EdgeSolver, forward: bool, sampled) -> tuple[float, n
     # the last contact are closer together than the extreme may have moved)
     lo, hi = edge_span(solver.own, solver.edge.name)
     h = (hi - lo) / (EDGE_SAMPLES - 1)
-    a, b = max(ss[k] - h, lo), min(ss[k] + h, hi)
     y_best = ys[k]
+    # where a bracket end touches beyond the other flank (or not at all), the extreme can
+    # be the crossing of the two flanks' boundaries: its point (margin 0) by Brent's root
+    # search; and the bracket ends there, so that the 1-D search sees only touching points
+    # (an untouching stretch is a plateau that drew the bounded search away from the
+    # extreme: the 13/26 drive's pinion heel, docs/machine_settings.md sec. 5)
+    candidates = [(ss[k], y_best)]
+    ends = []
+    for end in (max(ss[k] - h, lo), min(ss[k] + h, hi)):
+        if end == ss[k] or solver.feasible(solver.solve(end, y_best)):
+            ends.append(end)
+            if end != ss[k]:
+                candidates.append((end, solver.solve(end, y_best)))
+            continue
+        crossing = _boundary_crossing(solver, ss[k], end, y_best)
+        if crossing is not None:
+            candidates.append(crossing)
+            ends.append(crossing[0])
+        else:
+            ends.append(_last_touching(solver, ss[k], end, y_best))
+    a, b = sorted(ends)
     cache = {}
 
     def objective(s):
@@ -391,22 +414,30 @@ def _edge_extreme(solver: _EdgeSolver, forward: bool, sampled) -> tuple[float, n
         # infeasible points (beyond the other flank) rank below the best sample
         return -sign * y[2] if solver.feasible(y) else -score[k] + 1.0
 
-    opt = minimize_scalar(objective, bounds=(a, b), method="bounded",
-                          options={"xatol": 1e-5})
-    s_opt = float(opt.x)
-    y_opt = cache[s_opt] if s_opt in cache else solver.solve(s_opt, y_best)
-    # the bounded search never evaluates the bracket ends: an extreme at an end of the
-    # edge (a corner contact) is the end sample itself
-    candidates = [(s_opt, y_opt), (ss[k], y_best)]
-    # where a neighbour sample touches beyond the other flank, the extreme can be the
-    # crossing of the two flanks' boundaries: its point (margin 0) by Brent's root search
-    for end in (a, b):
-        if end != ss[k] and not solver.feasible(solver.solve(end, y_best)):
-            crossing = _boundary_crossing(solver, ss[k], end, y_best)
-            if crossing is not None:
-                candidates.append(crossing)
+    if b > a:
+        opt = minimize_scalar(objective, bounds=(a, b), method="bounded",
+                              options={"xatol": 1e-5})
+        s_opt = float(opt.x)
+        # the bounded search never evaluates the bracket ends: an extreme at an end of
+        # the edge (a corner contact) is the end sample itself
+        candidates.append((s_opt, cache[s_opt] if s_opt in cache
+                           else solver.solve(s_opt, y_best)))
     candidates = [(sv, y) for sv, y in candidates if solver.feasible(y)]
     return max(candidates, key=lambda sy: sign * sy[1][2])
+
+
+def _last_touching(solver: _EdgeSolver, s_in: float, s_out: float, y_in: np.ndarray,
+                   *, steps: int = 40) -> float:
+    """The edge point nearest ``s_out`` that still touches the other flank, between
+    ``s_in`` (touching) and ``s_out`` (not: its Newton solve fails), by bisection on
+    feasibility (``steps`` halvings)."""
+    for _ in range(steps):
+        mid = 0.5 * (s_in + s_out)
+        if solver.feasible(solver.solve(mid, y_in)):
+            s_in = mid
+        else:
+            s_out = mid
+    return s_in
 
 
 def _margin(surface: Surface, y: np.ndarray) -> float:
