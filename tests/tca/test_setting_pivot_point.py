@@ -1,5 +1,5 @@
 """The candidate choice of the local synthesis for a point-contact base pinion
-(tca.setting_synthesis ``_pivot_candidates``, tca.setting_problem
+(tca.setting_candidates ``pivot_candidates``, tca.setting_problem
 ``_path_point_on_section``; docs/machine_settings.md sec. 5, "The candidate choice for a
 point-contact base"; issue 27).
 
@@ -26,6 +26,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+from gearcontact.tca import setting_candidates as sc
 from gearcontact.tca import setting_synthesis as ss
 from gearcontact.tca.setting_problem import PIVOT_MARGIN, PatternRun, SynthesisProblem
 from gearcontact.tca.synthesis_targets import SynthesisTargets
@@ -81,17 +82,16 @@ def test_a_point_contact_base_gets_the_declared_candidates(monkeypatch):
         return {s: _result(s, problem.pivot[s], edges[kind], 3.0,
                            run=PatternRun(0.4, -0.3, (4.0, 75.0), 2.2))}
 
-    monkeypatch.setattr(ss, "SynthesisProblem", problem)
-    monkeypatch.setattr(ss, "synthesize_settings", synth)
+    monkeypatch.setattr(sc, "SynthesisProblem", problem)
     # levers 5 and 6 (session 27) do not apply here: their own tests below
-    monkeypatch.setattr(ss, "room_pivot", lambda *a, **k: None)
-    monkeypatch.setattr(ss, "turned_path_targets", lambda *a, **k: None)
+    monkeypatch.setattr(sc, "room_pivot", lambda *a, **k: None)
+    monkeypatch.setattr(sc, "turned_path_targets", lambda *a, **k: None)
     pair = SimpleNamespace(gear_face_width_mm=face, name="stand-in")
     t = SynthesisTargets(pattern_length_ratio=11.11 / face)
     done = {"drive": _result("drive", "node", 31, 15.7,
                              run=PatternRun(0.4, -0.3, (4.0, 75.0), 2.2))}
-    got = ss._pivot_candidates(pair, done, t, ("drive",), {}, True, node=node,
-                               problem={"gear": None})
+    got = sc.pivot_candidates(pair, done, t, ("drive",), {}, True, node=node,
+                              problem={"gear": None}, synthesize=synth)
     # one problem built, the moved pivot on the section of the best one's run middle
     # (the room candidate: its run is the same stand-in) and nothing at a depth
     assert built == [{"gear": None, "pivot_uv": {"drive": (4.0, 75.0)}}]
@@ -192,21 +192,21 @@ def test_lever_5_adds_the_pivot_moved_to_the_room_with_the_best_ones_targets(mon
         looked.append((result.pivot, targets, problem.name, side))
         return (3.5, 78.3) if problem.name == "node" else None
 
-    monkeypatch.setattr(ss, "SynthesisProblem", problem)
-    monkeypatch.setattr(ss, "synthesize_settings", synth)
-    monkeypatch.setattr(ss, "room_pivot", room)
-    monkeypatch.setattr(ss, "turned_path_targets", lambda *a, **k: None)
+    monkeypatch.setattr(sc, "SynthesisProblem", problem)
+    monkeypatch.setattr(sc, "room_pivot", room)
+    monkeypatch.setattr(sc, "turned_path_targets", lambda *a, **k: None)
     pair = SimpleNamespace(gear_face_width_mm=face, name="stand-in")
     t = SynthesisTargets(pattern_length_ratio=5.36 / face)
     done = {"drive": _result("drive", "node", 15, 14.65)}      # no run: levers 2-4 idle
-    got = ss._pivot_candidates(pair, done, t, ("drive",), {}, True, node=node,
-                               problem={"gear": None})
+    got = sc.pivot_candidates(pair, done, t, ("drive",), {}, True, node=node,
+                              problem={"gear": None}, synthesize=synth)
     assert looked == [("node", t, "node", "drive")]
     assert built == [{"gear": None, "pivot_uv": {"drive": (3.5, 78.3)}}]
     assert asked == [("moved", "drive", t)]
     kept = got["drive"]
     assert kept.pivot == ("moved, moved along the base's path to where its room holds half "
-                          "the paint ellipse, 5.36 mm")
+                          "the paint ellipse, 5.36 mm, and its depth travel over half a "
+                          "pitch")
     assert kept.edge_phases == 13
     assert kept.other_pivot == ("node: paint ellipse at a flank edge at 15 of 31 phases, "
                                 "full TCA TE0 p-p 14.65 arcsec")
@@ -306,12 +306,11 @@ def test_lever_6_turns_the_best_ones_path_towards_lengthwise(monkeypatch):
         asked.append((problem.name, t.path_angle_deg))
         return {s: _result(s, problem.pivot[s], 13, 9.8)}
 
-    monkeypatch.setattr(ss, "synthesize_settings", synth)
-    monkeypatch.setattr(ss, "room_pivot", lambda *a, **k: None)
+    monkeypatch.setattr(sc, "room_pivot", lambda *a, **k: None)
     pair = SimpleNamespace(gear_face_width_mm=face, name="stand-in")
     t = SynthesisTargets(pattern_length_ratio=5.36 / face)
-    got = ss._pivot_candidates(pair, {"drive": at(60.7)}, t, ("drive",), {}, True,
-                               node=node, problem={"gear": None})
+    got = sc.pivot_candidates(pair, {"drive": at(60.7)}, t, ("drive",), {}, True,
+                              node=node, problem={"gear": None}, synthesize=synth)
     assert asked == [("node", 60.7 - 30.0)]
     assert got["drive"].pivot == "node, its path at M turned towards lengthwise to 30.7 deg"
     assert got["drive"].edge_phases == 13
