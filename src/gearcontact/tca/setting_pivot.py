@@ -186,8 +186,11 @@ def room_pivot(result, targets, problem, *, side: str):
     ``a`` plus the margin ``m`` (:func:`room_need_mm`); then the point is the sampled
     point of the base's path (:func:`~.setting_problem.path_points_inside`, inside the
     flank box by :data:`~.setting_problem.PIVOT_MARGIN`) nearest M in phase whose room
-    (measured the same way) is at least ``a + m``; None if no sampled point has it, or
-    where ``result``'s contact leaves a flank within two local steps of M (no margin)."""
+    (measured the same way) is at least ``a + m``; where no sampled point has it, the
+    sampled point of the widest room (the nearest in phase of equal ones), where that
+    room is wider than M's and holds ``a`` (the depth then leaves the contact's travel
+    less than ``m``: the most it allows); None otherwise, or where ``result``'s contact
+    leaves a flank within two local steps of M (no margin)."""
     if not _free_point_contact_at_edge(result, targets, problem):
         return None
     pinion, gear = problem.flank(side, np.zeros(3)), problem.gear[side]
@@ -197,14 +200,23 @@ def room_pivot(result, targets, problem, *, side: str):
         need = room_need_mm(result, targets, problem, side=side, at_m=at_m)
     except ArithmeticError:
         return None
-    if not line_room_mm(pinion, gear, kin, at_m) < need:
+    room_m = line_room_mm(pinion, gear, kin, at_m)
+    if not room_m < need:
         return None
     points = path_points_inside(pinion, gear, problem.pair, problem.start[side],
                                 margin=PIVOT_MARGIN)
+    widest, widest_room = None, room_m
     for p in sorted(points, key=lambda p: (abs(p.phi1_rad - at_m.phi1_rad), p.phi1_rad)):
-        if line_room_mm(pinion, gear, kin, p) >= need:
+        room = line_room_mm(pinion, gear, kin, p)
+        if room >= need:
             return (round(float(p.u1), 6), round(float(p.v1), 6))
-    return None
+        if room > widest_room:
+            widest, widest_room = p, room
+    # none holds a + m: the widest room, where it holds a and is wider than M's
+    half = 0.5 * targets.pattern_length_ratio * problem.pair.gear_face_width_mm
+    if widest is None or not widest_room >= half:
+        return None
+    return (round(float(widest.u1), 6), round(float(widest.v1), 6))
 
 
 def room_need_mm(result, targets, problem, *, side: str, at_m) -> float:
