@@ -102,7 +102,8 @@ def pivot_candidates(pair, done, targets, sides, options, bearing_room, *, node,
             if t_len is not None:
                 add(prob, {s: t_len}, ", the paint ellipse's target shortened for a "
                     "pattern run of one pitch, {length:.2f} mm")
-        # a point-contact base's pivot moved along its path to the ellipse's room
+        # a point-contact base's pivot moved along its path to the ellipse's room and
+        # its depth travel over half a pitch (lever 5 with its margin)
         for s in sides:
             r, t, prob = best(s)
             uv = room_pivot(r, t, prob, side=s)

@@ -438,10 +438,11 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     (:class:`SynthesisProblem` ``pivot_uv``) and the best one's pivot with the ellipse
     shortened for a run of one pitch, chosen by the same rule (no working depth's centre:
     it is no point of the path); where the best one still has edge phases with the path
-    free, its pivot moved along the base's path to the ellipse's room
-    (:func:`~.setting_pivot.room_pivot`) and its path at M turned towards lengthwise
-    (:func:`~.setting_pivot.turned_path_targets`) join it (sec. 5, "The print's drive
-    bearing").
+    free, its pivot moved along the base's path to the ellipse's room plus the contact's
+    depth travel over half a pitch (:func:`~.setting_pivot.room_pivot`) and its path at M
+    turned towards lengthwise (:func:`~.setting_pivot.turned_path_targets`) join it
+    (sec. 5, "The print's drive bearing" and "a margin on lever 5's room"); the choice:
+    :func:`~.setting_candidates.pivot_candidates`.
 
     A side without M (:attr:`SynthesisProblem.off_flank`: the base's contact path misses
     the pinion mean section on the flank) raises CheckFailed, or with
