@@ -236,8 +236,8 @@ def test_room_pivot_applies_only_to_a_free_point_contact_bearing_at_an_edge():
 
 
 def test_room_pivot_on_the_print_moves_the_drive_pivot_to_the_room(print_twin):
-    # ~7 s on a quiet machine (two problems, 40 x 50 nodes: the synthesis' grid, on which the path points'
-    # conjugacy tolerance below was measured). Truths (declared with lever 5, its room
+    # ~7 s on a quiet machine (two problems, 40 x 50 nodes: the synthesis' grid, on
+    # which the path points' conjugacy tolerance below was measured). Truths (declared with lever 5, its room
     # asking for half the ellipse a plus the margin m since session 28, and its second
     # form): the margin is the closed form of tca.setting_room_margin (1e-12 relative;
     # its pieces tested there); on each side whose M has less room than a + m the pivot

@@ -12,7 +12,8 @@ Truths, declared with the rule (before building it):
 - ``depth_rate_per_rad`` is the five-point stencil of the contact's ``u1`` over steps of
   1/30 pitch: by hand on points solved one by one (``solve_mating_point`` at each phase,
   not the TCA's path; to 18 x 1e-10 mm / (12 h), the stencil's weights times the
-  solver's tolerance, 1e-10 mm, on each point), and the derivative itself, a central difference at a sixteenth of
+  solver's tolerance, 1e-10 mm, on each point), and the derivative itself, a central
+  difference at a sixteenth of
   the step (1e-4 relative: its truncation (h/16)^2 / 6 |u'''/u'| < 1e-4 for |u'''/u'| <
   300 /rad^2, the path curving over a pitch of 0.39 rad).
 """

@@ -26,8 +26,8 @@ reaches an edge with its M closer to an edge than half its ellipse has one more
 candidate (:func:`room_pivot`): the pivot moved along the base's path to the nearest
 point whose room holds that half-length plus the contact's depth travel over half a
 pitch along the ellipse's axis (docs/machine_settings.md sec. 5, lever 5 of "The
-print's drive bearing" and its margin; :mod:`.setting_room_margin`), and one with its path at M turned towards lengthwise
-(:func:`turned_path_targets`, lever 6).
+print's drive bearing" and its margin; :mod:`.setting_room_margin`), and one with its
+path at M turned towards lengthwise (:func:`turned_path_targets`, lever 6).
 
 The results are :class:`~.setting_synthesis.SettingSynthesis` (read here by their
 ``met``, ``edge_phases``, ``tca_te0_pp_arcsec``, ``edges``, ``pivot``, ``run``); this
