@@ -1,5 +1,5 @@
 """The candidate choice of the local synthesis for a point-contact base pinion
-(tca.setting_synthesis ``_pivot_candidates``, tca.setting_problem
+(tca.setting_candidates ``pivot_candidates``, tca.setting_problem
 ``_path_point_on_section``; docs/machine_settings.md sec. 5, "The candidate choice for a
 point-contact base"; issue 27).
 
@@ -26,6 +26,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+from gearcontact.tca import setting_candidates as sc
 from gearcontact.tca import setting_synthesis as ss
 from gearcontact.tca.setting_problem import PIVOT_MARGIN, PatternRun, SynthesisProblem
 from gearcontact.tca.synthesis_targets import SynthesisTargets
@@ -81,17 +82,16 @@ def test_a_point_contact_base_gets_the_declared_candidates(monkeypatch):
         return {s: _result(s, problem.pivot[s], edges[kind], 3.0,
                            run=PatternRun(0.4, -0.3, (4.0, 75.0), 2.2))}
 
-    monkeypatch.setattr(ss, "SynthesisProblem", problem)
-    monkeypatch.setattr(ss, "synthesize_settings", synth)
+    monkeypatch.setattr(sc, "SynthesisProblem", problem)
     # levers 5 and 6 (session 27) do not apply here: their own tests below
-    monkeypatch.setattr(ss, "room_pivot", lambda *a, **k: None)
-    monkeypatch.setattr(ss, "turned_path_targets", lambda *a, **k: None)
+    monkeypatch.setattr(sc, "room_pivot", lambda *a, **k: None)
+    monkeypatch.setattr(sc, "turned_path_targets", lambda *a, **k: None)
     pair = SimpleNamespace(gear_face_width_mm=face, name="stand-in")
     t = SynthesisTargets(pattern_length_ratio=11.11 / face)
     done = {"drive": _result("drive", "node", 31, 15.7,
                              run=PatternRun(0.4, -0.3, (4.0, 75.0), 2.2))}
-    got = ss._pivot_candidates(pair, done, t, ("drive",), {}, True, node=node,
-                               problem={"gear": None})
+    got = sc.pivot_candidates(pair, done, t, ("drive",), {}, True, node=node,
+                              problem={"gear": None}, synthesize=synth)
     # one problem built, the moved pivot on the section of the best one's run middle
     # (the room candidate: its run is the same stand-in) and nothing at a depth
     assert built == [{"gear": None, "pivot_uv": {"drive": (4.0, 75.0)}}]
@@ -192,21 +192,21 @@ def test_lever_5_adds_the_pivot_moved_to_the_room_with_the_best_ones_targets(mon
         looked.append((result.pivot, targets, problem.name, side))
         return (3.5, 78.3) if problem.name == "node" else None
 
-    monkeypatch.setattr(ss, "SynthesisProblem", problem)
-    monkeypatch.setattr(ss, "synthesize_settings", synth)
-    monkeypatch.setattr(ss, "room_pivot", room)
-    monkeypatch.setattr(ss, "turned_path_targets", lambda *a, **k: None)
+    monkeypatch.setattr(sc, "SynthesisProblem", problem)
+    monkeypatch.setattr(sc, "room_pivot", room)
+    monkeypatch.setattr(sc, "turned_path_targets", lambda *a, **k: None)
     pair = SimpleNamespace(gear_face_width_mm=face, name="stand-in")
     t = SynthesisTargets(pattern_length_ratio=5.36 / face)
     done = {"drive": _result("drive", "node", 15, 14.65)}      # no run: levers 2-4 idle
-    got = ss._pivot_candidates(pair, done, t, ("drive",), {}, True, node=node,
-                               problem={"gear": None})
+    got = sc.pivot_candidates(pair, done, t, ("drive",), {}, True, node=node,
+                              problem={"gear": None}, synthesize=synth)
     assert looked == [("node", t, "node", "drive")]
     assert built == [{"gear": None, "pivot_uv": {"drive": (3.5, 78.3)}}]
     assert asked == [("moved", "drive", t)]
     kept = got["drive"]
     assert kept.pivot == ("moved, moved along the base's path to where its room holds half "
-                          "the paint ellipse, 5.36 mm")
+                          "the paint ellipse, 5.36 mm, and its depth travel over half a "
+                          "pitch")
     assert kept.edge_phases == 13
     assert kept.other_pivot == ("node: paint ellipse at a flank edge at 15 of 31 phases, "
                                 "full TCA TE0 p-p 14.65 arcsec")
@@ -236,44 +236,62 @@ def test_room_pivot_applies_only_to_a_free_point_contact_bearing_at_an_edge():
 
 
 def test_room_pivot_on_the_print_moves_the_drive_pivot_to_the_room(print_twin):
-    # ~15 s (two problems, 40 x 50 nodes: the synthesis' grid, on which the path points'
-    # conjugacy tolerance below was measured). Truths (declared with lever 5): the drive M
-    # (0.82 mm above the root) has less room than half lever 4's ellipse (5.36 mm,
-    # session 26), so the pivot moves to a point of the base's path (the uncrowned
-    # base's local TCA there: TE0 level < 1e-4 arcsec over a pitch, the crown-gear
-    # pinion's conjugacy tolerance, as above) whose room holds the half-length, while
-    # every sampled path point nearer M in phase does not (the rule's "nearest"; the
-    # room to line_room_mm's 0.01 mm); the coast M's room (7.2 mm measured) holds half
-    # the asked 11.11 mm, so it does not move
+    # ~7 s on a quiet machine (two problems, 40 x 50 nodes: the synthesis' grid, on
+    # which the path points' conjugacy tolerance below was measured). Truths (declared with lever 5, its room
+    # asking for half the ellipse a plus the margin m since session 28, and its second
+    # form): the margin is the closed form of tca.setting_room_margin (1e-12 relative;
+    # its pieces tested there); on each side whose M has less room than a + m the pivot
+    # moves to a point of the base's path (the uncrowned base's local TCA there: TE0
+    # level < 1e-4 arcsec over a pitch, the crown-gear pinion's conjugacy tolerance, as
+    # above): the nearest in phase whose room holds a + m, every sampled point nearer M
+    # not holding it, or, where no sampled point holds it, the one of the widest room,
+    # which holds a (rooms compared exactly: the same function on the same points). The
+    # stand-in results are the uncrowned base (x = 0) with lever 4's ellipse on the drive
+    # (5.36 mm, session 26) and the asked one on the coast (11.11 mm)
     from gearcontact.tca.mating import solve_mating_point
-    from gearcontact.tca.setting_pivot import room_pivot
+    from gearcontact.tca.setting_pivot import room_need_mm, room_pivot
     from gearcontact.tca.setting_problem import line_room_mm, path_points_inside
+    from gearcontact.tca.setting_room_margin import (axis_depth_rate, depth_rate_per_rad,
+                                                     room_margin_mm)
 
     twin, gear = print_twin
     prob = SynthesisProblem(twin, gear=gear)
     face = twin.gear_face_width_mm
-    t = SynthesisTargets(pattern_length_ratio=5.36 / face)
-    half = 0.5 * 5.36
-    edge = _result("drive", "M", 15, 14.6)
-    uv = room_pivot(edge, t, prob, side="drive")
-    assert uv is not None
     kin = twin.kinematics()
-    base, g = prob.flank("drive", np.zeros(3)), prob.gear["drive"]
-    at_m = solve_mating_point(base, g, kin, prob.start["drive"])
-    assert line_room_mm(base, g, kin, at_m) < half
-    points = path_points_inside(base, g, twin, prob.start["drive"])
-    chosen = min(points, key=lambda p: np.hypot(p.u1 - uv[0], p.v1 - uv[1]))
-    assert np.hypot(chosen.u1 - uv[0], chosen.v1 - uv[1]) < 1e-6    # the rounding
-    assert line_room_mm(base, g, kin, chosen) >= half
-    gap = abs(chosen.phi1_rad - at_m.phi1_rad)
-    assert all(line_room_mm(base, g, kin, p) < half for p in points
-               if abs(p.phi1_rad - at_m.phi1_rad) < gap - 1e-12)
-    moved = SynthesisProblem(twin, gear=gear, pivot_uv={"drive": uv})
-    assert abs(moved.mean_uv["drive"][1] - uv[1]) < 1e-6
-    m = moved.contact("drive", np.zeros(3))
-    assert m.te_level_arcsec < 1e-4 and abs(m.te_slope_arcsec_per_rad) < 1e-4
-    assert room_pivot(_result("coast", "M", 5, 2.8), SynthesisTargets(), prob,
-                      side="coast") is None
+    moved = {}
+    for side, length in (("drive", 5.36), ("coast", 11.11)):
+        t = SynthesisTargets(pattern_length_ratio=length / face)
+        edge = _result(side, "M", 15, 14.6)
+        uv = room_pivot(edge, t, prob, side=side)
+        base, g = prob.flank(side, np.zeros(3)), prob.gear[side]
+        at_m = solve_mating_point(base, g, kin, prob.start[side])
+        margin = room_margin_mm(
+            depth_rate_per_rad=depth_rate_per_rad(base, g, twin, prob.start[side]),
+            axis_depth_rate_per_mm=axis_depth_rate(base, g, kin, at_m),
+            pinion_teeth=twin.pinion_teeth)
+        need = room_need_mm(edge, t, prob, side=side, at_m=at_m)
+        assert margin > 0.0
+        assert need == pytest.approx(0.5 * length + margin, rel=1e-12)
+        room_m = line_room_mm(base, g, kin, at_m)
+        assert room_m < need
+        points = path_points_inside(base, g, twin, prob.start[side])
+        rooms = [line_room_mm(base, g, kin, p) for p in points]
+        assert uv is not None
+        k = int(np.argmin([np.hypot(p.u1 - uv[0], p.v1 - uv[1]) for p in points]))
+        assert np.hypot(points[k].u1 - uv[0], points[k].v1 - uv[1]) < 1e-6    # the rounding
+        if rooms[k] >= need:
+            gap = abs(points[k].phi1_rad - at_m.phi1_rad)
+            assert all(r < need for p, r in zip(points, rooms)
+                       if abs(p.phi1_rad - at_m.phi1_rad) < gap - 1e-12)
+        else:
+            assert max(rooms) < need and rooms[k] == max(rooms)
+            assert rooms[k] >= 0.5 * length and rooms[k] > room_m
+        moved[side] = uv
+    again = SynthesisProblem(twin, gear=gear, pivot_uv=moved)
+    for side, uv in moved.items():
+        assert abs(again.mean_uv[side][1] - uv[1]) < 1e-6
+        m = again.contact(side, np.zeros(3))
+        assert m.te_level_arcsec < 1e-4 and abs(m.te_slope_arcsec_per_rad) < 1e-4
 
 
 def test_lever_6_turns_the_best_ones_path_towards_lengthwise(monkeypatch):
@@ -306,12 +324,11 @@ def test_lever_6_turns_the_best_ones_path_towards_lengthwise(monkeypatch):
         asked.append((problem.name, t.path_angle_deg))
         return {s: _result(s, problem.pivot[s], 13, 9.8)}
 
-    monkeypatch.setattr(ss, "synthesize_settings", synth)
-    monkeypatch.setattr(ss, "room_pivot", lambda *a, **k: None)
+    monkeypatch.setattr(sc, "room_pivot", lambda *a, **k: None)
     pair = SimpleNamespace(gear_face_width_mm=face, name="stand-in")
     t = SynthesisTargets(pattern_length_ratio=5.36 / face)
-    got = ss._pivot_candidates(pair, {"drive": at(60.7)}, t, ("drive",), {}, True,
-                               node=node, problem={"gear": None})
+    got = sc.pivot_candidates(pair, {"drive": at(60.7)}, t, ("drive",), {}, True,
+                              node=node, problem={"gear": None}, synthesize=synth)
     assert asked == [("node", 60.7 - 30.0)]
     assert got["drive"].pivot == "node, its path at M turned towards lengthwise to 30.7 deg"
     assert got["drive"].edge_phases == 13

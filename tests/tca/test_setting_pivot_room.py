@@ -1,5 +1,5 @@
-"""The further pivot candidates of the local synthesis (tca.setting_synthesis
-``_pivot_candidates``; docs/machine_settings.md sec. 5, "The bearing's room"): the paint
+"""The further pivot candidates of the local synthesis (tca.setting_candidates
+``pivot_candidates``; docs/machine_settings.md sec. 5, "The bearing's room"): the paint
 ellipse's target shortened to the contact line's room at the centred pivot
 (``room_targets``, ``setting_problem.line_room_mm``), the pivot moved to the middle
 of the best candidate's pattern run (``run_pivot``, ``setting_problem.pattern_run``),
@@ -144,15 +144,17 @@ def test_f3_coast_bearing_leaves_the_edges_at_fewer_phases():
     # above the standard settings' (the standard crowning about the mean node)
     from pathlib import Path
 
-    from gearcontact.tca.setting_synthesis import _pivot_candidates, synthesize_settings
+    from gearcontact.tca.setting_candidates import pivot_candidates
+    from gearcontact.tca.setting_synthesis import synthesize_settings
     pair = load_pair(Path(__file__).resolve().parents[2] / "examples" / "iso23509_f3.toml")
     side = "coast"
     node = SynthesisProblem(pair, gear_generation="formate")
     done = synthesize_settings(pair, problem=node, sides=(side,))
-    options = dict(node=node, problem=dict(gear_generation="formate", gear=None))
-    before = _pivot_candidates(pair, done, SynthesisTargets(), (side,), {}, False,
+    options = dict(node=node, problem=dict(gear_generation="formate", gear=None),
+                   synthesize=synthesize_settings)
+    before = pivot_candidates(pair, done, SynthesisTargets(), (side,), {}, False,
                                **options)[side]
-    after = _pivot_candidates(pair, done, SynthesisTargets(), (side,), {}, True,
+    after = pivot_candidates(pair, done, SynthesisTargets(), (side,), {}, True,
                               **options)[side]
     assert after.met, after.table()
     assert after.edge_phases < before.edge_phases

@@ -281,6 +281,20 @@ def test_the_print_gear_drive_vertex_is_m(print_drive, print_choice):
 
 
 @pytest.mark.slow
+def test_the_print_drive_with_lever_5s_margin(print_choice):
+    # session 28's criterion (docs/machine_settings.md sec. 5, "The print's drive
+    # bearing: a margin on lever 5's room", declared before building the margin): fewer
+    # drive edge phases than session 27's kept candidate (lever 5 without a margin, path
+    # turned by lever 6: 13 of 31 in this check), the TE0 vertex at the kept M (1e-6 mm,
+    # the strict test's truth), none more on the coast (0 of 31); counts, exact
+    kept = print_choice["drive"]
+    assert kept.met, kept.table()
+    assert kept.vertex_offset_mm < 1e-6
+    assert kept.edge_phases < 13
+    assert print_choice["coast"].edge_phases <= 0
+
+
+@pytest.mark.slow
 def test_the_print_gear_coast_synthesis(print_problem):
     # ~30-60 s. On the side with M (coast): the corrections keep M and its normal (1e-9
     # mm, 1e-12), the targets are met at M within the synthesis' tolerances and the full

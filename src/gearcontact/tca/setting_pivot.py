@@ -24,9 +24,10 @@ is the base path's point on the pinion section of the run's middle
 rank and the choice are the same. A point-contact base whose best candidate still
 reaches an edge with its M closer to an edge than half its ellipse has one more
 candidate (:func:`room_pivot`): the pivot moved along the base's path to the nearest
-point whose room holds that half-length (docs/machine_settings.md sec. 5, lever 5 of
-"The print's drive bearing"), and one with its path at M turned towards lengthwise
-(:func:`turned_path_targets`, lever 6).
+point whose room holds that half-length plus the contact's depth travel over half a
+pitch along the ellipse's axis (docs/machine_settings.md sec. 5, lever 5 of "The
+print's drive bearing" and its margin; :mod:`.setting_room_margin`), and one with its
+path at M turned towards lengthwise (:func:`turned_path_targets`, lever 6).
 
 The results are :class:`~.setting_synthesis.SettingSynthesis` (read here by their
 ``met``, ``edge_phases``, ``tca_te0_pp_arcsec``, ``edges``, ``pivot``, ``run``); this
@@ -43,9 +44,10 @@ import numpy as np
 
 from .mating import solve_mating_point
 from .setting_problem import PIVOT_MARGIN, line_room_mm, path_points_inside
+from .setting_room_margin import axis_depth_rate, depth_rate_per_rad, room_margin_mm
 
 __all__ = ["PATH_TURN_DEG", "better_pivot", "cuttable_choice", "length_targets", "pivot_rank",
-           "room_pivot", "room_targets", "run_pivot", "turned_path_targets"]
+           "room_need_mm", "room_pivot", "room_targets", "run_pivot", "turned_path_targets"]
 
 #: Shortest paint-ellipse target of the further candidates (the
 #: :class:`~.synthesis_targets.SynthesisTargets` range), over the gear face width.
@@ -171,34 +173,73 @@ def length_targets(targets, result, *, face_mm: float):
 
 
 def room_pivot(result, targets, problem, *, side: str):
-    """Lever 5 of "The print's drive bearing" (docs/machine_settings.md sec. 5): the
-    pinion flank point (u, v), mm (rounded to 1e-6 mm, as :func:`run_pivot`), of the
-    point-contact base's contact path to which ``result``'s pivot moves, or None where
-    the lever does not apply.
+    """Lever 5 of "The print's drive bearing" (docs/machine_settings.md sec. 5, with
+    session 28's margin): the pinion flank point (u, v), mm (rounded to 1e-6 mm, as
+    :func:`run_pivot`), of the point-contact base's contact path to which ``result``'s
+    pivot moves, or None where the lever does not apply.
 
     It applies where ``problem`` (the :class:`~.setting_problem.SynthesisProblem`
     ``result`` was synthesized on, to ``targets``) has a point-contact base, the
     targets leave the path angle free, ``result`` has edge phases and the room at its M
     (:func:`~.setting_problem.line_room_mm` along the major axis of the base pair's own
     contact ellipse, the uncrowned base pinion) is less than half the target ellipse
-    ``a``: then the point is the sampled point of the base's path
-    (:func:`~.setting_problem.path_points_inside`, inside the flank box by
-    :data:`~.setting_problem.PIVOT_MARGIN`) nearest M in phase whose room (measured the
-    same way) is at least ``a``; None if no sampled point has it."""
+    ``a`` plus the margin ``m`` (:func:`room_need_mm`); then the point is the sampled
+    point of the base's path (:func:`~.setting_problem.path_points_inside`, inside the
+    flank box by :data:`~.setting_problem.PIVOT_MARGIN`) nearest M in phase whose room
+    (measured the same way) is at least ``a + m``; where no sampled point has it, the
+    sampled point of the widest room (the nearest in phase of equal ones), where that
+    room is wider than M's and holds ``a`` (the depth then leaves the contact's travel
+    less than ``m``: the most it allows); None otherwise, or where ``result``'s contact
+    leaves a flank within two local steps of M (no margin)."""
     if not _free_point_contact_at_edge(result, targets, problem):
         return None
-    half = 0.5 * targets.pattern_length_ratio * problem.pair.gear_face_width_mm
     pinion, gear = problem.flank(side, np.zeros(3)), problem.gear[side]
     kin = problem.pair.kinematics()
     at_m = solve_mating_point(pinion, gear, kin, problem.start[side])
-    if not line_room_mm(pinion, gear, kin, at_m) < half:
+    try:
+        need = room_need_mm(result, targets, problem, side=side, at_m=at_m)
+    except ArithmeticError:
+        return None
+    room_m = line_room_mm(pinion, gear, kin, at_m)
+    if not room_m < need:
         return None
     points = path_points_inside(pinion, gear, problem.pair, problem.start[side],
                                 margin=PIVOT_MARGIN)
+    widest, widest_room = None, room_m
     for p in sorted(points, key=lambda p: (abs(p.phi1_rad - at_m.phi1_rad), p.phi1_rad)):
-        if line_room_mm(pinion, gear, kin, p) >= half:
+        room = line_room_mm(pinion, gear, kin, p)
+        if room >= need:
             return (round(float(p.u1), 6), round(float(p.v1), 6))
-    return None
+        if room > widest_room:
+            widest, widest_room = p, room
+    # none holds a + m: the widest room, where it holds a and is wider than M's
+    half = 0.5 * targets.pattern_length_ratio * problem.pair.gear_face_width_mm
+    if widest is None or not widest_room >= half:
+        return None
+    return (round(float(widest.u1), 6), round(float(widest.v1), 6))
+
+
+def room_need_mm(result, targets, problem, *, side: str, at_m) -> float:
+    """The room lever 5 asks of a pivot, mm: half the target ellipse,
+    ``a = pattern_length_ratio x face / 2``, plus the margin
+    :func:`~.setting_room_margin.room_margin_mm` of ``result``'s depth travel over half
+    a pitch (its synthesized pinion's path at M, ``problem.start[side]``) along the base
+    ellipse's major axis at M (``at_m``, the uncrowned base's contact there).
+
+    Raises
+    ------
+    ArithmeticError
+        ``result``'s contact leaves a flank within two local steps of M.
+    """
+    pair = problem.pair
+    gear = problem.gear[side]
+    margin = room_margin_mm(
+        depth_rate_per_rad=depth_rate_per_rad(problem.flank(side, result.x), gear, pair,
+                                              problem.start[side]),
+        axis_depth_rate_per_mm=axis_depth_rate(problem.flank(side, np.zeros(3)), gear,
+                                               pair.kinematics(), at_m),
+        pinion_teeth=pair.pinion_teeth)
+    return 0.5 * targets.pattern_length_ratio * pair.gear_face_width_mm + margin
 
 
 def _free_point_contact_at_edge(result, targets, problem) -> bool:

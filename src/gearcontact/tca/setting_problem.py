@@ -44,8 +44,8 @@ from .stencil import gap_at
 from .types import ContactGuess, EdgeContact
 
 __all__ = ["MeanPointContact", "PatternRun", "SynthesisProblem", "corrected_setup",
-           "line_room_mm", "mean_point_contact", "path_points_inside", "pattern_run",
-           "roll_about"]
+           "line_room_mm", "local_tca", "mean_point_contact", "path_points_inside",
+           "pattern_run", "roll_about"]
 
 _REPORT_TORQUE_NM = 64.5
 
@@ -128,7 +128,7 @@ class MeanPointContact:
     te_level_arcsec: float
 
 
-def _local_tca(pinion, gear, pair, start: ContactGuess):
+def local_tca(pinion, gear, pair, start: ContactGuess):
     """``(kinematics, h, path)``: the TCA over five phases about ``start`` (-2..2 steps
     of ``h``, :data:`_LOCAL_STEP_PITCH` of a pinion pitch, rad), edges off."""
     kin = pair.kinematics()
@@ -145,7 +145,7 @@ def mean_point_contact(pinion, gear, pair, start: ContactGuess, *,
     side), from which the TE curvature, the parabolic TE level and the path direction at M
     follow (Litvin & Fuentes 2004, sec. 21.8: the second-order conditions of local
     synthesis are posed at M, not at the TE vertex of a whole pitch)."""
-    kin, h, path = _local_tca(pinion, gear, pair, start)
+    kin, h, path = local_tca(pinion, gear, pair, start)
     te = np.asarray(path.te0_arcsec, dtype=float)
     if not np.all(np.isfinite(te)):
         raise ArithmeticError("the contact leaves a flank within two local steps of M")
@@ -165,7 +165,7 @@ def _path_point_at(pinion, gear, pair, guess: ContactGuess, *, v1_mm: float):
     within 1e-6 mm: secant on the phase, started from a local TCA over +-2 steps of
     :data:`_LOCAL_STEP_PITCH` (the system with ``v1`` held is singular where TE0 is
     constant along the path, as on the crown gear's pinion)."""
-    kin, _, path = _local_tca(pinion, gear, pair, guess)
+    kin, _, path = local_tca(pinion, gear, pair, guess)
     k = int(np.argmin([abs(p.v1 - v1_mm) for p in path.points]))
     prev, mp = path.points[k - 1 if k else 1], path.points[k]
     for _ in range(20):

@@ -71,14 +71,12 @@ from ..geometry.basic_settings import STANDARD_CROWNING, crowned_pinion_setups
 from ..geometry.formate import SIDES
 from ..geometry.gear_generation import gear_generation as default_gear_generation
 from ..geometry.machine import MachineSetup, mirror_setup
-from ..geometry.settings_top_land import check_settings_top_land
 from ..validation import InputRangeError
 from .analysis import pattern_on_flank
 from .design_point import DesignPoint
 from .edges import pattern_edges
 from .mesh import mesh_cycle
-from .setting_pivot import (cuttable_choice, length_targets, pivot_rank, room_pivot,
-                            room_targets, run_pivot, turned_path_targets)
+from .setting_candidates import pivot_candidates
 from .setting_problem import (MeanPointContact, PatternRun, SynthesisProblem,
                               corrected_setup, mean_point_contact, pattern_run, roll_about)
 from .setting_reach import ReachPrediction, chord_step, reach_model, target_misses
@@ -391,119 +389,6 @@ def _checked(prob: SynthesisProblem, side, x, targets, length, phases, runs, t0)
                             time.perf_counter() - t0, pivot=prob.pivot[side], run=run)
 
 
-def _pivot_candidates(pair, done, targets, sides, options, bearing_room, *, node, problem):
-    """``done`` (the syntheses of ``sides`` about the mean node, the problem ``node``)
-    against the other pivots of a line-contact base (:mod:`.setting_pivot`;
-    docs/machine_settings.md sec. 5, "The pivot's depth" and "The bearing's room"; a
-    point-contact base, "The candidate choice for a point-contact base": no centre, the
-    room at its M on its path, the run's pivot on its path),
-    each side's best by :func:`~.setting_pivot.better_pivot`: the working depth's
-    centre; with ``bearing_room``, in turn, the centre with the ellipse no longer than
-    the contact line's room there (:func:`~.setting_pivot.room_targets`), the pivot
-    moved to the middle of the best one's pattern run
-    (:func:`~.setting_pivot.run_pivot`), and the best one's pivot with the ellipse
-    shortened for a run of one pitch (:func:`~.setting_pivot.length_targets`), each
-    where it applies. ``problem``: the :class:`SynthesisProblem` options."""
-    per_side = targets if isinstance(targets, dict) else dict.fromkeys(sides, targets)
-    # side -> [(result, its targets, its problem)]
-    cands = {s: [(done[s], per_side[s], node)] for s in sides}
-    failed = {s: [] for s in sides}     # the candidates without contact at their M
-
-    def add(prob, tg, note=""):
-        """Synthesize the sides of ``tg`` ({side: targets}) on ``prob``; a side without
-        contact at its M is left out (its candidate not tried)."""
-        for s, t in tg.items():
-            said = note.format(length=t.pattern_length_ratio * pair.gear_face_width_mm)
-            try:
-                r = synthesize_settings(pair, targets={s: t}, problem=prob, sides=(s,),
-                                        **options)[s]
-            except CheckFailed as exc:
-                failed[s].append(f"{prob.pivot.get(s, 'a pivot off the flank')}{said}: "
-                                 f"not synthesized ({exc})")
-                continue
-            cands[s].append((dataclasses.replace(r, pivot=r.pivot + said), t, prob))
-
-    def best(s):
-        return min(cands[s], key=lambda c: pivot_rank(c[0]))
-
-    if node.point_contact:      # the pivot stays on the base's path: no centred one
-        centred = node
-        room_words = "its room along its major axis at M"
-    else:
-        centred = SynthesisProblem(pair, **problem, pivot_depth={
-            s: per_side[s].centre_profile for s in sides})
-        add(centred, per_side)
-        room_words = "the contact line's room there"
-    if bearing_room:
-        face = pair.gear_face_width_mm
-        # the bearing's room: the ellipse no longer than the contact line's room there
-        # (a point contact's: along the ellipse's major axis at M)
-        short = {s: room_targets(per_side[s], room_mm=centred.line_room_mm(
-            s, centred.standard[s]), face_mm=face) for s in sides}
-        add(centred, {s: t for s, t in short.items() if t is not None},
-            f", the paint ellipse's target shortened to {room_words}, {{length:.2f}} mm")
-        # the pitch centred on the best one's pattern run
-        moved = {s: (run_pivot(best(s)[0]), best(s)) for s in sides}
-        moved = {s: m for s, m in moved.items() if m[0] is not None}
-        if moved:
-            try:
-                prob = SynthesisProblem(pair, **problem, pivot_uv={
-                    s: uv for s, (uv, _) in moved.items()})
-            except (CheckFailed, EdgeContact, ArithmeticError):    # no contact there
-                prob = None
-            for s, (uv, (r, t, _)) in moved.items():
-                if prob is not None:
-                    add(prob, {s: t}, ", the middle of the pattern run of the pivot at "
-                        + r.pivot.replace("{", "{{").replace("}", "}}"))
-        # the bearing's length from the path: the best one's run made a pitch long
-        for s in sides:
-            r, t, prob = best(s)
-            t_len = length_targets(t, r, face_mm=face)
-            if t_len is not None:
-                add(prob, {s: t_len}, ", the paint ellipse's target shortened for a "
-                    "pattern run of one pitch, {length:.2f} mm")
-        # a point-contact base's pivot moved along its path to the ellipse's room
-        for s in sides:
-            r, t, prob = best(s)
-            uv = room_pivot(r, t, prob, side=s)
-            try:
-                moved_prob = None if uv is None else SynthesisProblem(pair, **problem,
-                                                                      pivot_uv={s: uv})
-            except (CheckFailed, EdgeContact, ArithmeticError):    # no contact there
-                moved_prob = None
-            if moved_prob is not None:
-                add(moved_prob, {s: t}, ", moved along the base's path to where its room "
-                    "holds half the paint ellipse, {length:.2f} mm")
-        # the best one's path at M turned towards lengthwise (a reach refusal: not tried)
-        for s in sides:
-            r, t, prob = best(s)
-            t_turn = turned_path_targets(r, t, prob)
-            try:
-                if t_turn is not None:
-                    add(prob, {s: t_turn}, f", its path at M turned towards lengthwise to "
-                        f"{t_turn.path_angle_deg:.1f} deg")
-            except InputRangeError as exc:
-                failed[s].append(f"{prob.pivot[s]}, its path at M turned to "
-                                 f"{t_turn.path_angle_deg:.1f} deg: not synthesized ({exc})")
-    gear = {s: node.gear_setups[s] for s in SIDES}
-
-    def pointed(pick):
-        """The readers' refusal of the pinion tooth ``pick`` cuts ("" if none)."""
-        pinion = {s: r.setup for s, r in pick.items()}
-        if set(pinion) != set(SIDES):   # one side synthesized: its tooth not checked here
-            return ""
-        try:
-            check_settings_top_land(dataclasses.replace(pair, machine=tuple(
-                gear[s] for s in SIDES) + tuple(pinion[s] for s in SIDES)))
-        except InputRangeError as exc:
-            return str(exc.value)
-        return ""
-
-    out = cuttable_choice({s: [c[0] for c in cands[s]] for s in sides}, pointed=pointed)
-    return {s: dataclasses.replace(r, other_pivot="; ".join(
-        t for t in (r.other_pivot, *failed[s]) if t)) for s, r in out.items()}
-
-
 def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = SynthesisTargets(),
                              gear_generation: str | None = None, gear: dict | None = None,
                              standard_off_flank: bool = False, centre_pivot: bool = True,
@@ -553,10 +438,11 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     (:class:`SynthesisProblem` ``pivot_uv``) and the best one's pivot with the ellipse
     shortened for a run of one pitch, chosen by the same rule (no working depth's centre:
     it is no point of the path); where the best one still has edge phases with the path
-    free, its pivot moved along the base's path to the ellipse's room
-    (:func:`~.setting_pivot.room_pivot`) and its path at M turned towards lengthwise
-    (:func:`~.setting_pivot.turned_path_targets`) join it (sec. 5, "The print's drive
-    bearing").
+    free, its pivot moved along the base's path to the ellipse's room plus the contact's
+    depth travel over half a pitch (:func:`~.setting_pivot.room_pivot`) and its path at M
+    turned towards lengthwise (:func:`~.setting_pivot.turned_path_targets`) join it
+    (sec. 5, "The print's drive bearing" and "a margin on lever 5's room"); the choice:
+    :func:`~.setting_candidates.pivot_candidates`.
 
     A side without M (:attr:`SynthesisProblem.off_flank`: the base's contact path misses
     the pinion mean section on the flank) raises CheckFailed, or with
@@ -586,10 +472,10 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     done = synthesize_settings(pair, targets=targets, problem=prob, sides=sides,
                                **options) if sides else {}
     if centre_pivot and sides and (bearing_room or not prob.point_contact):
-        done = _pivot_candidates(pair, done, targets, sides, options, bearing_room,
-                                 node=prob, problem=dict(
-                                     gear_generation=gear_generation or "generated",
-                                     gear=gear, **grid))
+        done = pivot_candidates(pair, done, targets, sides, options, bearing_room,
+                                node=prob, problem=dict(
+                                    gear_generation=gear_generation or "generated",
+                                    gear=gear, **grid), synthesize=synthesize_settings)
     pinion = {s: r.setup for s, r in done.items()}
     pinion.update(crowned_pinion_setups(pair, {s: prob.base[s] for s in SIDES
                                                if s not in done},
