@@ -81,7 +81,7 @@ def _check_convergence(pair, flanks, tca, side, *, posed: bool = True,
         pf = fine_rows.get(pc.path_index, pc)
         for w, a in zip(law.loads_n, law.approach_lcp_mm):
             truth, _ = patch_approach(fine, pf, float(w), materials,
-                                      datum_mm=lambda gap, off: edge_datum_mm(gap, off, pf))
+                                      datum_mm=edge_datum_mm(pf))
             errors.append(abs(a / truth - 1.0))
             assert abs(a / truth - 1.0) <= 0.03, (pc.path_index, w, a, truth)
     return errors

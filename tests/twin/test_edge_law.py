@@ -101,13 +101,13 @@ def _lcp_approach(fields, pc, load, materials, *, edge: bool):
     (module docstring): at an edge row on fields fitted to its patch."""
     if edge:
         d, _ = patch_approach(fields, pc, load, materials,
-                              datum_mm=lambda gap, off: edge_datum_mm(gap, off, pc))
+                              datum_mm=edge_datum_mm(pc))
         assert np.isfinite(d)
         return d
     gap, grid, off, _ = fields.get(pc)
     res = solve_lcp(gap, grid, load, materials=materials, warn_coarse=False)
     assert res.converged
-    return float(res.delta_mm) - (edge_datum_mm(gap, off, pc) if edge else pc.offset_mm)
+    return float(res.delta_mm) - pc.offset_mm
 
 
 def _check_static_approach(pair, tca, flanks, mesh, *, min_scale: float) -> int:

@@ -212,7 +212,7 @@ def edge_compliance(fields, pc, *, materials, torque_nmm: float) -> EdgeComplian
     lcp, warm = np.full(loads.size, np.nan), None
     for i, w in enumerate(loads):
         lcp[i], warm = patch_approach(fields, pc, float(w), materials, warm=warm,
-                                      datum_mm=lambda gap, off: edge_datum_mm(gap, off, pc))
+                                      datum_mm=edge_datum_mm(pc))
     _check_approaches(lcp, loads, pc)
     hz = np.array([hamrock_brewe_hertz(pc.A_minus_per_mm, pc.B_minus_per_mm, float(w),
                                        e_prime_mpa=fields.e_prime).approach_mm
@@ -240,11 +240,10 @@ def trim_compliance(fields, pc, *, materials, torque_nmm: float) -> EdgeComplian
     return _fit(loads, _approaches(gap, grid, loads, pc, materials), cont)
 
 
-def edge_datum_mm(gap, off, pc) -> float:
+def edge_datum_mm(pc) -> float:
     """The closing datum of an edge row's LCP approach (mm): its opening ``pc.offset_mm``,
-    the row's true first contact (module docstring, "Datum"), whatever the field
-    (``gap``, ``off``: the field the approach was solved on, for callers that pass a
-    datum rule to :func:`.patch_field.patch_approach`)."""
+    the row's true first contact (module docstring, "Datum"), whatever the field the
+    approach is solved on."""
     return pc.offset_mm
 
 

@@ -140,8 +140,9 @@ def patch_approach(fields, pc, load_n: float, materials, *, datum_mm, warm=None)
     load_n : float
         Normal load, N.
     materials : (Material, Material)
-    datum_mm : callable
-        ``datum_mm(gap, off) -> float``: the closing datum on a field (mm).
+    datum_mm : float
+        The closing datum of the row's approach, mm (its opening,
+        :func:`~.edge_law.edge_datum_mm`).
     warm : ContactResult, optional
         Warm start on the row's own field.
 
@@ -177,7 +178,7 @@ def patch_approach(fields, pc, load_n: float, materials, *, datum_mm, warm=None)
             box = [mid_s + 2.0 * (box[0] - mid_s), mid_s + 2.0 * (box[1] - mid_s),
                    mid_t + 2.0 * (box[2] - mid_t), mid_t + 2.0 * (box[3] - mid_t)]
         h = (float(grid.dx_mm[0]), float(grid.dy_mm[0]))
-    return float(fit.delta_mm) - datum_mm(gap, off), first
+    return float(fit.delta_mm) - datum_mm, first
 
 
 def touch_gap_mm(fields, pc) -> float:
