@@ -44,7 +44,7 @@ from .stencil import gap_at
 from .types import ContactGuess, EdgeContact
 
 __all__ = ["MeanPointContact", "PatternRun", "SynthesisProblem", "corrected_setup",
-           "line_room_mm", "local_tca", "mean_point_contact", "path_points_inside",
+           "line_room_mm", "local_slope", "local_tca", "mean_point_contact", "path_points_inside",
            "pattern_run", "roll_about"]
 
 _REPORT_TORQUE_NM = 64.5
@@ -138,6 +138,13 @@ def local_tca(pinion, gear, pair, start: ContactGuess):
     return kin, h, path
 
 
+def local_slope(values, h: float) -> float:
+    """The five-point central difference at the middle of :func:`local_tca`'s five
+    phases (``values`` at -2..2 steps of ``h``): ``d value / d phi1``, per rad."""
+    y = values
+    return float((y[0] - 8.0 * y[1] + 8.0 * y[3] - y[4]) / (12.0 * h))
+
+
 def mean_point_contact(pinion, gear, pair, start: ContactGuess, *,
                        torque_nm: float = _REPORT_TORQUE_NM) -> MeanPointContact:
     """Contact of ``pinion`` and ``gear`` at the mean point: a local TCA over five phases
@@ -150,7 +157,7 @@ def mean_point_contact(pinion, gear, pair, start: ContactGuess, *,
     if not np.all(np.isfinite(te)):
         raise ArithmeticError("the contact leaves a flank within two local steps of M")
     curv = float((-te[0] + 16.0 * te[1] - 30.0 * te[2] + 16.0 * te[3] - te[4]) / (12.0 * h * h))
-    slope = float((te[0] - 8.0 * te[1] + 8.0 * te[3] - te[4]) / (12.0 * h))
+    slope = local_slope(te, h)
     level = 0.5 * abs(curv) * (math.pi / pair.pinion_teeth) ** 2
     a, mp, b = path.points[1], path.points[2], path.points[3]
     tangent = kin.gear_pose(mp.phi2_rad)[0] @ (gear.point(b.u2, b.v2).r

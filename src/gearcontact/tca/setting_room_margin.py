@@ -26,7 +26,7 @@ import math
 
 import numpy as np
 
-from .setting_problem import local_tca
+from .setting_problem import local_slope, local_tca
 from .stencil import tangent_frame, tangent_parameters
 
 __all__ = ["axis_depth_rate", "depth_rate_per_rad", "room_margin_mm"]
@@ -47,7 +47,7 @@ def depth_rate_per_rad(pinion, gear, pair, start) -> float:
     u = np.array([p.u1 for p in path.points], dtype=float)
     if len(u) != 5 or not np.all(np.isfinite(u)) or any(p.edge for p in path.points):
         raise ArithmeticError("the contact leaves a flank within two local steps of M")
-    return float((u[0] - 8.0 * u[1] + 8.0 * u[3] - u[4]) / (12.0 * h))
+    return local_slope(u, h)
 
 
 def axis_depth_rate(pinion, gear, kin, mp) -> float:
