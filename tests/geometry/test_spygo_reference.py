@@ -104,7 +104,8 @@ def test_spygo_points_lie_on_our_envelope(name):
 _FLIPS = {
     "f2_drive": [("sliding_base_mm", lambda m, s: -m["sliding_base_mm"]),
                  ("swivel_deg", lambda m, s: m["swivel_deg"] + 180.0),     # tilt opposite
-                 ("swivel_deg", lambda m, s: s["SWIVELANGLE"])],
+                 ("swivel_deg", lambda m, s: s["SWIVELANGLE"]),
+                 ("ratio_of_roll", lambda m, s: 1.0 / s["RATIOROLL"])],
     "f2_coast_words": [("modified_roll_2c_per_rad", lambda m, s: s["C2"]),
                        ("modified_roll_6d_per_rad2", lambda m, s: -s["D6"]),
                        ("helical_motion_mm_per_rad", lambda m, s: s["H1"]),
