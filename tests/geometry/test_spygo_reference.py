@@ -1,11 +1,13 @@
-"""The pinion's machine kinematics against an independent peer, SpyGO.
+"""The machine kinematics of the pinion (and a generated gear) against an independent
+peer, SpyGO.
 
 tests/data/spygo/ holds pinion flank points computed by SpyGO (haomjc/SpyGO at 417ac9a,
 its own sampler ``hypoid.main.geometry.rz_sampling_casadi``: its 9-joint cradle chain,
 its sign matrix, its blade and its equation of meshing) for four pinion flanks whose
 settings exercise every pinion word (tilt + swivel, sliding base, MCTB, blank offset,
 ratio of roll, 2C, 6D, helical motion V_1 / V_2; right-hand F.2 spiral bevel and
-left-hand 10 x 41 hypoid), each mapped term by term into SpyGO's settings
+left-hand 10 x 41 hypoid) and for the printed right-hand 10 x 41 gear with tilt, swivel,
+2C, 6D, V_1 and V_2 added, each mapped term by term into SpyGO's settings
 (tests/data/spygo/README.md; the script that wrote them, make_reference.py, is not run
 here). gearcontact cuts the same flanks from its own tables and must go through SpyGO's
 points. Tolerances (declared in docs/machine_settings.md sec. 2, "An independent peer:
@@ -16,7 +18,7 @@ SpyGO (session 29)"):
   equations 1e-10 mm; SpyGO's Newton 1e-12, its residuals checked <= 1e-9 and measured
   <= 4.8e-13 when written; the CSV's 12 decimals 5e-13 mm), four orders below the
   smallest effect of a word read with the other sign (2.3e-2 mm, below);
-- the flank surface TCA uses (the 120 x 150 quintic ``RadialSheet``): 1e-6 mm, the
+- the flank surface TCA uses (the 120 x 150 quintic ``RadialSheet`` / ``GearSheet``): 1e-6 mm, the
   sheet's interpolation error between exact nodes (2.5e-7 mm measured at 80 x 100 in
   sec. 6) with margin.
 """
@@ -32,8 +34,9 @@ import numpy as np
 import pytest
 
 from gearcontact.geometry.conjugate import UndercutError, nominal_pinion_box
-from gearcontact.geometry.generated import (EnvelopeSolver, generated_pinion_flank, mean_uv,
-                                            solve_node_grid, work_to_body)
+from gearcontact.geometry.generated import (EnvelopeSolver, gear_cone, generated_gear_flank,
+                                            generated_pinion_flank, mean_uv, solve_node_grid,
+                                            work_to_body)
 from gearcontact.geometry.machine import setup_from_tables
 from gearcontact.geometry.pair import load_pair
 
@@ -67,16 +70,19 @@ def _pair(case: dict):
 
 def _nodes(pair, case: dict, machine: dict, pts: dict):
     """gearcontact's exact envelope nodes at the (u, v) of SpyGO's points."""
-    setup = setup_from_tables("pinion", case["side"], machine, case["blade"])
-    cone, _ = nominal_pinion_box(pair.blank, pair.pinion_face_width_mm)
+    setup = setup_from_tables(case["member"], case["side"], machine, case["blade"])
+    if case["member"] == "gear":
+        cone = gear_cone(pair.blank)
+    else:
+        cone, _ = nominal_pinion_box(pair.blank, pair.pinion_face_width_mm)
     solver = EnvelopeSolver(setup, pair.blank, cone)
     u_m, v_m = mean_uv(setup, pair.blank, cone)
     mean = solver.solve(u_m, v_m, solver.initial_guess(u_m, v_m))
     return solve_node_grid(solver, pts["u_mm"][:, 0], pts["v_mm"][0], u_m, v_m, mean.q)
 
 
-def _in_body(pair, vec, *, point: bool):
-    q, t = work_to_body("pinion", pair.blank)
+def _in_body(pair, case: dict, vec, *, point: bool):
+    q, t = work_to_body(case["member"], pair.blank)
     return vec @ q.T + (t if point else 0.0)
 
 
@@ -85,13 +91,14 @@ def test_spygo_points_lie_on_our_envelope(name):
     case, pts = CASES[name], _points(name)
     pair = _pair(case)
     nodes = _nodes(pair, case, case["machine"], pts)
-    x_sp = _in_body(pair, pts["x_w"], point=True)
-    n_sp = _in_body(pair, pts["n_w"], point=False)
+    x_sp = _in_body(pair, case, pts["x_w"], point=True)
+    n_sp = _in_body(pair, case, pts["n_w"], point=False)
     # the same (axial position, radius): the work frames' origins and axes are one
-    assert np.abs(x_sp[..., 0] - nodes.x_mm[..., 0]).max() < NODE_TOL_MM
-    assert np.abs(np.hypot(x_sp[..., 1], x_sp[..., 2])
-                  - np.hypot(nodes.x_mm[..., 1], nodes.x_mm[..., 2])).max() < NODE_TOL_MM
-    # measured 5.3e-13 .. 6.9e-13 mm (both solvers' residuals)
+    a, b, c = (2, 0, 1) if case["member"] == "gear" else (0, 1, 2)
+    assert np.abs(x_sp[..., a] - nodes.x_mm[..., a]).max() < NODE_TOL_MM
+    assert np.abs(np.hypot(x_sp[..., b], x_sp[..., c])
+                  - np.hypot(nodes.x_mm[..., b], nodes.x_mm[..., c])).max() < NODE_TOL_MM
+    # measured 5.3e-13 .. 7.0e-13 mm (both solvers' residuals)
     along = np.einsum("...i,...i->...", x_sp - nodes.x_mm, nodes.n)
     assert np.abs(along).max() < NODE_TOL_MM
     assert np.abs(x_sp - nodes.x_mm).max() < NODE_TOL_MM
@@ -121,6 +128,15 @@ _FLIPS = {
                           ("swivel_deg", lambda m, s: m["swivel_deg"] + 180.0),
                           ("helical_motion_mm_per_rad2", lambda m, s: -s["H2"]),
                           ("sliding_base_mm", lambda m, s: -s["SLIDINGBASE"])],
+    "hypoid_gear_drive_words": [("modified_roll_2c_per_rad", lambda m, s: -s["C2"]),
+                                ("modified_roll_6d_per_rad2", lambda m, s: -s["D6"]),
+                                ("helical_motion_mm_per_rad", lambda m, s: -s["H1"]),
+                                ("helical_motion_mm_per_rad2", lambda m, s: -s["H2"]),
+                                ("swivel_deg", lambda m, s: s["SWIVELANGLE"]),
+                                ("swivel_deg", lambda m, s: m["swivel_deg"] + 180.0),
+                                ("blank_offset_mm", lambda m, s: -s["BLANKOFFSET"]),
+                                ("sliding_base_mm", lambda m, s: -s["SLIDINGBASE"]),
+                                ("machine_centre_to_back_mm", lambda m, s: -s["MACHCTRBACK"])],
 }
 
 
@@ -132,7 +148,7 @@ def test_each_word_read_otherwise_misses_spygo(name):
     # does not reach the nodes at all
     case, pts = CASES[name], _points(name)
     pair = _pair(case)
-    x_sp = _in_body(pair, pts["x_w"], point=True)
+    x_sp = _in_body(pair, case, pts["x_w"], point=True)
     for key, value in _FLIPS[name]:
         new = value(case["machine"], case["spygo_machine"])
         if key == "swivel_deg":
@@ -149,15 +165,20 @@ def test_each_word_read_otherwise_misses_spygo(name):
 @pytest.mark.slow
 @pytest.mark.parametrize("name", sorted(CASES))
 def test_spygo_points_lie_on_our_flank_surface(name):
-    # the Surface TCA takes (120 x 150 nodes, quintic sheet): 2 to 9 s per flank
+    # the Surface TCA takes (120 x 150 nodes, quintic sheet): 1.4 to 3 s per flank
     case, pts = CASES[name], _points(name)
     pair = _pair(case)
-    setup = setup_from_tables("pinion", case["side"], case["machine"], case["blade"])
-    flank, _ = generated_pinion_flank(setup, pair.blank,
-                                      pinion_face_width_mm=pair.pinion_face_width_mm)
-    x_sp = _in_body(pair, pts["x_w"], point=True)
-    u, v, psi = flank.locate(x_sp)
+    setup = setup_from_tables(case["member"], case["side"], case["machine"], case["blade"])
+    if case["member"] == "gear":
+        flank, _ = generated_gear_flank(setup, pair.blank,
+                                        gear_face_width_mm=pair.gear_face_width_mm)
+    else:
+        flank, _ = generated_pinion_flank(setup, pair.blank,
+                                          pinion_face_width_mm=pair.pinion_face_width_mm)
+    x_sp = _in_body(pair, case, pts["x_w"], point=True)
+    u, v = pts["u_mm"], pts["v_mm"]
     assert flank.boundary.contains(u, v).all()
-    radius = np.hypot(x_sp[..., 1], x_sp[..., 2])
+    got = flank.evaluate(u, v, second=False)
     # measured 1e-12 .. 6.4e-11 mm
-    assert np.abs(radius * (psi - flank.psi(u, v))).max() < SHEET_TOL_MM
+    assert np.abs(np.einsum("...i,...i->...", x_sp - got.r, got.n)).max() < SHEET_TOL_MM
+    assert np.abs(x_sp - got.r).max() < SHEET_TOL_MM

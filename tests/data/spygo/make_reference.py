@@ -49,20 +49,28 @@ ROOT = HERE.parents[2]
 F2 = "examples/machine_settings/iso23509_f2_machine.toml"
 HYPOID = "tests/data/spygo/hypoid_10x41_standard.toml"
 
-#: Cases: (name, pair file, side, changes to the pair's [machine.pinion.<side>] table).
+#: Cases: (name, pair file, member, side, changes to the pair's [machine.<member>.<side>]
+#: table).
 #: Values chosen so that every pinion word moves the flank by far more than the test's
 #: tolerance (measured in the test) and the envelope stays regular over the box.
 CASES = [
-    ("f2_drive", F2, "drive", {}),
-    ("f2_coast_words", F2, "coast", {
+    ("f2_drive", F2, "pinion", "drive", {}),
+    ("f2_coast_words", F2, "pinion", "coast", {
         "machine_centre_to_back_mm": 0.7, "blank_offset_mm": 1.2,
         "modified_roll_2c_per_rad": 0.06, "modified_roll_6d_per_rad2": 0.4,
         "helical_motion_mm_per_rad": 4.0, "helical_motion_mm_per_rad2": 10.0}),
-    ("hypoid_drive_roll", HYPOID, "drive", {
+    ("hypoid_drive_roll", HYPOID, "pinion", "drive", {
         "modified_roll_2c_per_rad": 0.04, "modified_roll_6d_per_rad2": 0.3}),
-    ("hypoid_coast_tilt", HYPOID, "coast", {
+    ("hypoid_coast_tilt", HYPOID, "pinion", "coast", {
         "tilt_deg": 5.0, "swivel_deg": -60.0,
         "helical_motion_mm_per_rad": 3.0, "helical_motion_mm_per_rad2": -6.0}),
+    # the printed right-hand hypoid gear (generated), its words added, and a curved blade
+    # (SpyGO's straight blade is a circle of 2e6 mm: 2.5e-5 mm off a line over 10 mm)
+    ("hypoid_gear_drive_words", HYPOID, "gear", "drive", {
+        "tilt_deg": 3.0, "swivel_deg": 30.0,
+        "modified_roll_2c_per_rad": 0.03, "modified_roll_6d_per_rad2": 0.2,
+        "helical_motion_mm_per_rad": 2.0, "helical_motion_mm_per_rad2": 4.0,
+        "blade": {"profile_radius_mm": 800.0, "profile_reference_mm": 2.0}}),
 ]
 N_U, N_V = 5, 7          # nodes per case: profile x face width
 FRACTION = 0.08          # nodes inset from the active box's edges by this fraction
@@ -78,8 +86,9 @@ def wrap_deg(a: float) -> float:
     return a
 
 
-def spygo_settings(settings, blade, hand: str) -> tuple[dict, dict]:
-    """SpyGO's MachineField and CutterField values of a gearcontact pinion set-up.
+def spygo_settings(settings, blade, hand: str, member: str = "pinion") -> tuple[dict, dict]:
+    """SpyGO's MachineField and CutterField values of a gearcontact set-up (``hand``: the
+    pinion's, SpyGO's system hand; a gear only of a left-hand-pinion pair).
 
     The mapping (README.md, term by term): SpyGO's frames equal gearcontact's with
     ``x_M = -z_m, y_M = y_m, z_M = x_m`` (machine) and the work frame identical; SpyGO's
@@ -88,6 +97,8 @@ def spygo_settings(settings, blade, hand: str) -> tuple[dict, dict]:
     """
     right = hand == "right"
     s = 1.0 if right else -1.0
+    if member == "gear" and right:
+        raise SystemExit("a left-hand gear's mapping is not written (README.md)")
     mr = tuple(settings.modified_roll) + (0.0,) * (4 - len(settings.modified_roll))
     hm = tuple(settings.helical_motion) + (0.0,) * (2 - len(settings.helical_motion))
     machine = {
@@ -104,6 +115,14 @@ def spygo_settings(settings, blade, hand: str) -> tuple[dict, dict]:
         "C2": -s * mr[0], "D6": mr[1], "E24": -s * mr[2], "F120": mr[3],
         "H1": -s * hm[0], "H2": hm[1],
     }
+    if member == "gear":
+        # SpyGO's gear rows, system hand left (a right-hand gear): tilt negated, swivel
+        # not, so its cutter axis leans to e(q + 90 - sw); the roll and the sliding base
+        # series enter with gearcontact's signs
+        machine.update({"SWIVELANGLE": wrap_deg(90.0 - settings.swivel_deg),
+                        "BLANKOFFSET": settings.blank_offset_mm,
+                        "CRADLEANGLE": settings.cradle_angle_deg,
+                        "C2": mr[0], "E24": mr[2], "H1": hm[0]})
     machine = {k: v + 0.0 for k, v in machine.items()}     # no -0.0 in the JSON
     k = 1.0 / blade.profile_radius_mm if blade.profile_radius_mm else 0.0
     cutter = {
@@ -130,35 +149,56 @@ def import_spygo(path: Path):
     return ds, geo, kin
 
 
-def our_case(pair_file: str, side: str, changes: dict):
-    """gearcontact's pair, the changed pinion set-up and its tables."""
+def our_case(pair_file: str, member: str, side: str, changes: dict):
+    """gearcontact's pair, the changed set-up and its tables."""
     import dataclasses
     from gearcontact.geometry.machine import setup_from_tables, setup_to_tables
     from gearcontact.geometry.pair import load_pair
     pair = load_pair(ROOT / pair_file)
-    base = next(s for s in pair.machine if s.member == "pinion" and s.side == side)
+    base = next(s for s in pair.machine if s.member == member and s.side == side)
     machine, blade = setup_to_tables(base)
+    changes = dict(changes)
+    blade = {**blade, **changes.pop("blade", {})}
     machine = {**machine, **changes}
-    setup = setup_from_tables("pinion", side, machine, blade)
+    setup = setup_from_tables(member, side, machine, blade)
     return pair, dataclasses.replace(setup), machine, blade
 
 
 def node_grid(pair, setup):
     """(u, v) nodes inside the active box and their work-frame (R, z_w), mm."""
-    from gearcontact.geometry.generated import generated_pinion_box
-    solver, box, _ = generated_pinion_box(setup, pair.blank,
-                                          pinion_face_width_mm=pair.pinion_face_width_mm)
+    from gearcontact.geometry.generated import generated_gear_box, generated_pinion_box
+    if setup.member == "gear":
+        solver, box, _ = generated_gear_box(setup, pair.blank,
+                                            gear_face_width_mm=pair.gear_face_width_mm)
+    else:
+        solver, box, _ = generated_pinion_box(setup, pair.blank,
+                                              pinion_face_width_mm=pair.pinion_face_width_mm)
     du, dv = box.u_tip - box.u_root, box.v_heel - box.v_toe
     us = np.linspace(box.u_root + FRACTION * du, box.u_tip - FRACTION * du, N_U)
     vs = np.linspace(box.v_toe + FRACTION * dv, box.v_heel - FRACTION * dv, N_V)
     uu, vv = np.meshgrid(us, vs, indexing="ij")
     radius = solver.cone.radius_mm(uu, vv)
-    z_w = vv - pair.blank.pinion_apex_x_mm     # X_body = Q X_w + (x_A1, 0, 0), Q: z_w -> x
+    if setup.member == "gear":                 # X_body = Rz(theta_P) X_w + (0, 0, z_A2)
+        z_w = solver.cone.height_mm(uu, vv) - pair.blank.gear_apex_z_mm
+    else:                                      # X_body = Q X_w + (x_A1, 0, 0), Q: z_w -> x
+        z_w = vv - pair.blank.pinion_apex_x_mm
     return uu, vv, radius, z_w
 
 
-def spygo_points(ds, geo, kin, machine: dict, cutter: dict, hand: str, flank: str,
-                 radius, z_w):
+def solve(root, f, start, target):
+    """SpyGO's equations solved from ``start``: CasADi's Newton, and where it fails from
+    there, a least-squares step on the same equations first (scipy)."""
+    from scipy.optimize import least_squares
+    try:
+        return np.array(root(start, target)).ravel()
+    except RuntimeError:
+        fit = least_squares(lambda q: np.array(f(q, target)).ravel(), start,
+                            xtol=1e-15, ftol=1e-15, gtol=1e-15)
+        return np.array(root(fit.x, target)).ravel()
+
+
+def spygo_points(ds, geo, kin, machine: dict, cutter: dict, hand: str, member: str,
+                 flank: str, radius, z_w):
     """SpyGO's flank points and normals at (R, z_w), with its parameters and residuals."""
     import casadi as ca
     data = ds.DesignData()
@@ -166,11 +206,11 @@ def spygo_points(ds, geo, kin, machine: dict, cutter: dict, hand: str, flank: st
     data.gear_common_data.gen_type = "generated"
     mf = ds.MachineField(**{k: v for k, v in machine.items()})
     cf = ds.CutterField(**cutter)
-    setattr(data.pinion_machine_settings, flank, mf)
-    setattr(data.pinion_cutter_data, flank, cf)
-    mat = data.extract_machine_settings_matrix("pinion", flank)
-    tool = np.array(data.extract_tool_settings("pinion", flank))
-    ggt, _, vgt = kin.casadi_machine_kinematics("pinion", hand)
+    setattr(getattr(data, f"{member}_machine_settings"), flank, mf)
+    setattr(getattr(data, f"{member}_cutter_data"), flank, cf)
+    mat = data.extract_machine_settings_matrix(member, flank)
+    tool = np.array(data.extract_tool_settings(member, flank))
+    ggt, _, vgt = kin.casadi_machine_kinematics(member, hand)
     p_t, n_t, _ = kin.casadi_tool_fun(flank)
     x = ca.SX.sym("x", 3)                 # csi, theta, phi
     g = ggt(mat, x[2])
@@ -201,10 +241,9 @@ def spygo_points(ds, geo, kin, machine: dict, cutter: dict, hand: str, flank: st
                 if 0 <= nb[0] < radius.shape[0] and 0 <= nb[1] < radius.shape[1]
                 and np.all(np.isfinite(guesses[(slice(None),) + nb]))]
         start = near[0] if near else guess0
-        guesses[(slice(None),) + ij] = np.array(
-            root(start, [radius[ij], z_w[ij]])).ravel()
+        guesses[(slice(None),) + ij] = solve(root, f, start, [radius[ij], z_w[ij]])
     # SpyGO's own sampler from those guesses (its machine matrix, sign matrix, tool)
-    xyz, nrm, trip = geo.rz_sampling_casadi(radius, z_w, data, "pinion", flank,
+    xyz, nrm, trip = geo.rz_sampling_casadi(radius, z_w, data, member, flank,
                                             triplet_guess=guesses)
     resid = np.array([np.abs(np.array(f(trip[:, i, j], [radius[i, j], z_w[i, j]]))).max()
                       for i, j in np.ndindex(radius.shape)]).reshape(radius.shape)
@@ -217,20 +256,22 @@ def main() -> None:
     args = ap.parse_args()
     ds, geo, kin = import_spygo(args.spygo.resolve())
     cases, rows = {}, []
-    for name, pair_file, side, changes in CASES:
-        pair, setup, machine, blade = our_case(pair_file, side, changes)
+    for name, pair_file, member, side, changes in CASES:
+        pair, setup, machine, blade = our_case(pair_file, member, side, changes)
         hand = pair.pinion_hand
-        flank = "concave" if side == "drive" else "convex"
-        sp_machine, sp_cutter = spygo_settings(setup.settings, setup.blade, hand)
+        # pinion drive / gear coast: the outside blade, SpyGO's concave flank
+        flank = "concave" if (side == "drive") == (member == "pinion") else "convex"
+        sp_machine, sp_cutter = spygo_settings(setup.settings, setup.blade, hand, member)
         uu, vv, radius, z_w = node_grid(pair, setup)
-        xyz, nrm, trip, resid = spygo_points(ds, geo, kin, sp_machine, sp_cutter, hand, flank,
-                                             radius, z_w)
+        xyz, nrm, trip, resid = spygo_points(ds, geo, kin, sp_machine, sp_cutter, hand, member,
+                                             flank, radius, z_w)
         worst = float(resid.max())
         if not worst < 1e-9:
             raise SystemExit(f"{name}: SpyGO residual {worst:.3e} (not converged)")
         print(f"{name}: {radius.size} points, SpyGO residual <= {worst:.2e}, "
               f"roll {np.degrees(trip[2].min()):.2f}..{np.degrees(trip[2].max()):.2f} deg")
-        cases[name] = {"pair": pair_file, "side": side, "hand": hand, "spygo_flank": flank,
+        cases[name] = {"pair": pair_file, "member": member, "side": side, "hand": hand,
+                       "spygo_flank": flank,
                        "changes": changes, "machine": machine, "blade": blade,
                        "spygo_machine": sp_machine, "spygo_cutter": sp_cutter}
         for i, j in np.ndindex(radius.shape):
