@@ -2,12 +2,13 @@
 
 SpyGO (https://github.com/haomjc/SpyGO, fork of https://github.com/eGrabovic/SpyGO) is
 an independent open Python implementation of cradle-type face-milling generation. This
-script maps gearcontact's pinion machine settings of a few cases into SpyGO's settings
+script maps gearcontact's machine settings of a few pinion flanks (and one generated gear
+flank) into SpyGO's settings
 (the mapping: README.md beside this file, and ``spygo_settings`` below), asks SpyGO's own
 sampler ``hypoid.main.geometry.rz_sampling_casadi`` for the flank point at given (radius,
 axial position) of the work frame, checks SpyGO's residuals, and writes
 
-- ``cases.json``: per case gearcontact's ``[machine.pinion.<side>]`` / ``[blade...]``
+- ``cases.json``: per case gearcontact's ``[machine.<member>.<side>]`` / ``[blade...]``
   tables (what the test cuts), the pair file they start from, the hand, and the SpyGO
   settings typed (what SpyGO cut);
 - ``points.csv``: per case and node the work-frame point and normal SpyGO returns.
