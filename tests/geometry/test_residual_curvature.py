@@ -67,6 +67,9 @@ def test_pressure_bound_covers_the_line_contact():
             q = line_contact_terms(0.03 * (1 + s * e), 2000.0, 10.0, E_PRIME)[0]
             assert abs(q / p - 1.0) <= pressure_bound(e)
     assert pressure_bound(0.0) == 0.0 and pressure_bound(1.0) == math.inf
+    # the rows' scale is the TCA's paint thickness, the same number
+    from gearcontact.tca.curvature import PAINT_THICKNESS_MM
+    assert PAINT_UM == pytest.approx(1e3 * PAINT_THICKNESS_MM, rel=1e-15)
     with pytest.raises(InputRangeError, match="error"):
         pressure_bound(-0.1)
     with pytest.raises(InputRangeError, match="tensor_per_mm"):

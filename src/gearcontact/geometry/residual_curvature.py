@@ -46,15 +46,14 @@ from scipy.interpolate import RectBivariateSpline
 from ..validation import InputRangeError
 from .setting_fit import FitProblem
 
-__all__ = ["CURVATURE_PARAMETERS", "CurvedFitProblem", "PAINT_UM", "PathCurvature", "PathResidual",
-           "curvature_rows", "path_residual", "pressure_bound", "spline_derivatives",
-           "tangent_hessian"]
+__all__ = ["CURVATURE_PARAMETERS", "CurvedFitProblem", "PAINT_UM", "PathCurvature",
+           "PathResidual", "curvature_rows", "path_residual", "pressure_bound",
+           "spline_derivatives", "tangent_hessian"]
 
 #: Added to the fitted subset of a side fitted with curvature rows: the helical motion
-#: V_1, the lengthwise freedom the rows need (docs/machine_settings.md sec. 6, "The
-#: residual's curvature and the pressure it bounds": on s0003 coast the path's largest
-#: relative curvature error 0.172 with the default subset, 0.136 with V_1 added,
-#: 0.171 with 24E).
+#: V_1, the lengthwise freedom the rows need (the choice measured in
+#: docs/machine_settings.md sec. 6, "The residual's curvature and the pressure it
+#: bounds").
 CURVATURE_PARAMETERS = ("helical_motion_mm_per_rad",)
 #: The paint thickness of the TCA's contact ellipse (tca.curvature.PAINT_THICKNESS_MM),
 #: um: the scale of the curvature rows (module docstring).
