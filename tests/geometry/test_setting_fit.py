@@ -215,6 +215,73 @@ def test_s0003_fitted_pair_loaded_te_within_the_residual(s0003_fit, tmp_path):
     assert abs(cut.te_lcp_pp_arcsec - today.te_lcp_pp_arcsec) < bound
 
 
+@pytest.fixture(scope="module")
+def s0003_curved_fit():
+    from gearcontact.tca.path_curvature import target_path_curvature
+
+    pair = load_pair("s0003")
+    return easeoff_machine_pair(pair, paths={"coast": target_path_curvature(pair, "coast")})
+
+
+def _single_pair(pair):
+    from gearcontact.ltca.pair_ltca import single_pair_ltca
+    from gearcontact.tca.analysis import analyze_pair
+
+    tca, flanks = analyze_pair(pair, side="coast", phases=61)
+    return single_pair_ltca(tca, flanks, pair, 64.5, side="coast")
+
+
+@pytest.fixture(scope="module")
+def s0003_curved_cases(s0003_curved_fit, tmp_path_factory):
+    from gearcontact.geometry.pair import pair_to_toml
+
+    path = tmp_path_factory.mktemp("curved") / "cut.toml"
+    path.write_text(pair_to_toml(s0003_curved_fit.pair))
+    return _single_pair(load_pair("s0003")), _single_pair(load_pair(path))
+
+
+@pytest.mark.slow
+def test_s0003_fitted_pair_hertz_pressure_within_the_curvature_bound(s0003_curved_fit,
+                                                                    s0003_curved_cases):
+    # issue 27: the cut pair's LTCA "equals today's within the residual", for the
+    # contact pressure. The bound declared in docs/machine_settings.md sec. 6 ("The
+    # residual's curvature and the pressure it bounds"): the half relative curvatures
+    # move by at most a factor 1 +- e and the Hertz peak pressure at the same load by
+    # at most 1 - (1 - e)^(2/3), e the residual's largest relative curvature error over
+    # the target's contact path (the cut pair's P0 lies on it; the bound checked
+    # against analytic.hertz in tests/geometry/test_residual_curvature.py). The fit
+    # carried the curvature rows and V_1 (design --contact-curvature).
+    coast = s0003_curved_fit.sides["coast"]
+    assert coast.curvature_fitted and coast.path is not None
+    # what the rows cost in the gap: within the plain fit's asserted 0.7 / 0.15 um
+    # max / RMS (measured 0.431 / 0.127 against 0.566 / 0.120 um)
+    assert coast.max_um < 0.7 and coast.rms_um < 0.15
+    # measured e 0.130 over the path (0.087 at P0): bound 8.9 %; without the rows
+    # e 0.208 (14.4 %): the rows must tighten it below 10 %
+    e, bound = coast.path.max_error, coast.path.pressure_bound
+    assert bound < 0.10
+    today, cut = s0003_curved_cases
+    # measured: B- 0.000967 -> 0.001028 (+6.3 %, the plain fit +12 %), preview p_max
+    # 1448.7 -> 1480.9 MPa (+2.2 %, the plain fit +3.5 %)
+    b0, b1 = (c.preview.B_minus_per_mm for c in (today, cut))
+    assert abs(b1 / b0 - 1.0) <= e
+    assert abs(cut.preview.p_max_mpa / today.preview.p_max_mpa - 1.0) <= bound
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="the single-pair LCP at s0003's P0 is an edge-loaded "
+                   "patch at the pinion tip whose loaded area (3.9 mm lengthwise, where the "
+                   "gap is not its quadratic at P0) grows by 12 % in the cut pair: -13.2 % "
+                   "against the 8.9 % Hertz bound at P0's curvature (docs/machine_settings.md "
+                   "sec. 6)")
+def test_s0003_fitted_pair_lcp_p90_within_the_curvature_bound(s0003_curved_fit,
+                                                             s0003_curved_cases):
+    # the same declared bound for the LCP's p90 at P0 (measured 2227.6 -> 1934.6 MPa)
+    today, cut = s0003_curved_cases
+    bound = s0003_curved_fit.sides["coast"].path.pressure_bound
+    assert abs(cut.patch.p90_mpa / today.patch.p90_mpa - 1.0) <= bound
+
+
 def test_measured_grid_reproduces_the_polynomial_target(tmp_path):
     # a bicubic spline through samples of the (quadratic) ease-off is the ease-off
     # itself: the eased flank from the CSV equals build_flanks' to rounding (1e-15 rad

@@ -160,6 +160,11 @@ def register(sub) -> None:
                    help="with --machine-settings on a pair with an ease-off: the objective of "
                         "the settings fit, the RMS deviation (default) or the largest one "
                         "(from the RMS fit; docs/machine_settings.md sec. 6)")
+    p.add_argument("--contact-curvature", action="store_true",
+                   help="with --machine-settings on a pair with an ease-off: the target "
+                        "pair's TCA path found, the fit's residual kept flat there "
+                        "(curvature rows) and its curvature reported with the Hertz "
+                        "pressure bound it implies (docs/machine_settings.md sec. 6)")
     p.add_argument("--lengthwise-crowning-um", type=float, default=None,
                    help="with --machine-settings: pinion cutter circle departure at the "
                         "face ends, um, 0 or 1e-6 to 200 (default 25; both crowning "
@@ -193,6 +198,7 @@ def check(args) -> None:
                               ("--keep-gear", args.keep_gear),
                               ("--target-flank", args.target_flank),
                               ("--fit", args.fit),
+                              ("--contact-curvature", args.contact_curvature),
                               ("--lengthwise-crowning-um", args.lengthwise_crowning_um),
                               ("--blade-profile-crowning-um", args.blade_profile_crowning_um)):
             if value not in (None, False):

@@ -227,6 +227,28 @@ def grid_relief_named(exc: InputRangeError, target_flank) -> InputRangeError:
                            "nm or mm)")
 
 
+def target_paths(pair) -> dict:
+    """``{side: PathCurvature}`` of the pair's TCA on each side in point contact
+    (:func:`~gearcontact.tca.path_curvature.target_path_curvature`, ``design
+    --contact-curvature``); a side whose TCA fails is named on stderr and fitted without
+    the curvature rows."""
+    from ..geometry.formate import SIDES
+    from ..tca.path_curvature import target_path_curvature
+    from ..validation import UnusableInput
+
+    paths = {}
+    for side in SIDES:
+        try:
+            path = target_path_curvature(pair, side)
+        except UnusableInput as exc:
+            print(f"gearcontact design: {side}: no curvature rows (the target's TCA: "
+                  f"{exc})", file=sys.stderr)
+            continue
+        if path is not None:
+            paths[side] = path
+    return paths
+
+
 def easeoff_settings(args, pair) -> int:
     from ..geometry.easeoff_settings import easeoff_machine_pair
     from ..geometry.gear_correction import (corrected_pair, gear_correction, gear_seeds,
@@ -266,10 +288,11 @@ def easeoff_settings(args, pair) -> int:
     if "gear" in measured:       # measured gear rows: the gear corrected
         gear = gear_correction(pair, measured["gear"], objective=args.fit or "rms",
                                seeds=gear_seeds(own or pair, generation), where=where)
+    paths = target_paths(pair) if getattr(args, "contact_curvature", False) else None
     try:
         fit = easeoff_machine_pair(pair, easeoff_grid=getattr(args, "easeoff_grid", None),
                                    objective=args.fit or "rms", where=where,
-                                   reliefs=getattr(args, "reliefs", None))
+                                   reliefs=getattr(args, "reliefs", None), paths=paths)
     except InputRangeError as exc:
         raise grid_relief_named(exc, args.target_flank) from None
     if gear is not None:

@@ -90,6 +90,11 @@ def check_options(args, pair) -> None:
         raise InputRangeError("--fit", args.fit, "given only with --machine-settings on a pair "
                               "with an ease-off or --target-flank (the settings fit; without "
                               "it the option has no effect)")
+    if getattr(args, "contact_curvature", False) and not (
+            args.machine_settings and has_easeoff(pair) and args.target_flank is None):
+        raise InputRangeError("--contact-curvature", True, "given only with "
+                              "--machine-settings on a pair with an ease-off and no "
+                              "--target-flank (the target pair's own TCA path)")
     if args.local_synthesis and not args.machine_settings:
         raise InputRangeError("--local-synthesis", True, "given only with --machine-settings "
                               "(without it the option has no effect)")

@@ -31,8 +31,11 @@ from .machine import MEMBERS, mirror_setup
 from .measuring_grid import RESIDUAL_COLUMNS, MeasuredPoints, residual_rows, target_grids
 from .point_fit import check_point_count, point_deviation_um, point_problem
 from .relief_setup import relieved_setup
-from .setting_fit import (DEFAULT_PARAMETERS, PARAMETERS, SettingFit, conjugate_seed,
-                          fit_pinion_setup, flank_deviation_um, solve_fit)
+from .residual_curvature import (CURVATURE_PARAMETERS, CurvedFitProblem, PathCurvature,
+                                 PathResidual, path_residual, pressure_bound)
+from .setting_fit import (DEFAULT_PARAMETERS, PARAMETERS, SettingFit, checked_options,
+                          conjugate_seed, fit_grid, fit_pinion_setup, flank_deviation_um,
+                          solve_fit)
 from .settings_top_land import check_settings_top_land, member_box
 
 __all__ = ["EaseOffSettings", "KinkPosition", "SideResidual", "easeoff_machine_pair"]
@@ -116,6 +119,12 @@ class SideResidual:
         the residual is measured over all its pieces.
     box : FlankBoundary or None
         The cut flank's active box.
+    path : PathResidual or None
+        The residual's curvature at the target's contact path (a ``paths`` side of
+        :func:`easeoff_machine_pair`, from the residual map): the relative curvature
+        error and the pressure bound it implies (:mod:`.residual_curvature`).
+    curvature_fitted : bool
+        Whether the fit carried the curvature rows at that path.
     """
 
     side: str
@@ -129,6 +138,8 @@ class SideResidual:
     points: MeasuredPoints | None = None
     kinks: tuple = ()
     box: object = None
+    path: PathResidual | None = None
+    curvature_fitted: bool = False
 
 
 @dataclass(frozen=True)
@@ -169,16 +180,26 @@ class EaseOffSettings:
                          "the flank"]
         rows += ["", "| correction | unit | " + " | ".join(self.sides) + " |",
                  "|---|---|" + "---:|" * len(self.sides)]
-        names = next(iter(self.sides.values())).fit.corrections
-        for n in names:
+        names = dict.fromkeys(n for r in self.sides.values() for n in r.fit.corrections)
+        for n in names:     # a side that does not fit ``n`` (curvature rows elsewhere): -
             rows.append(f"| {n} | {PARAMETERS[n][0]} | " + " | ".join(
-                f"{r.fit.corrections[n]:+.6g}" for r in self.sides.values()) + " |")
+                f"{r.fit.corrections[n]:+.6g}" if n in r.fit.corrections else "-"
+                for r in self.sides.values()) + " |")
         rows += ["", "reach predicted before the fit (the target's part outside the span of "
                  "the settings' sensitivities at the seed, linear) against the fit, on the "
                  "fit grid, max / RMS: " + ", ".join(
                      f"{side} {r.fit.predicted_max_um:.3f} / {r.fit.predicted_rms_um:.3f} um "
                      f"predicted, {r.fit.fit_max_um:.3f} / {r.fit.fit_rms_um:.3f} um fitted"
                      for side, r in self.sides.items())]
+        for side, r in self.sides.items():
+            if r.path is not None:
+                rows += ["", f"{side}: the residual's curvature at the target's contact path "
+                         f"({len(r.path.error)} points): relative curvature error at P0 "
+                         f"{r.path.reference_error:.4f} (Hertz pressure bound +-"
+                         f"{100.0 * pressure_bound(r.path.reference_error):.2f} %), max "
+                         f"{r.path.max_error:.4f} (+-{100.0 * r.path.pressure_bound:.2f} %; "
+                         + ("fitted with curvature rows" if r.curvature_fitted else
+                            "not fitted") + ")"]
         if any(r.fit.objective == "minimax" for r in self.sides.values()):
             rows += ["", "fit objective minimax: largest deviation on the fit grid " + ", ".join(
                 f"{side} {r.fit.fit_max_um:.3f} um" + (
@@ -203,15 +224,27 @@ class EaseOffSettings:
 
 
 def _side_fit(side, seed, target, problem, pair, conjugate, *, parameters, n_u, n_v,
-              objective, box=None) -> tuple[SideResidual, dict]:
+              objective, box=None, path: PathCurvature | None = None,
+              fit_curvature: bool = False) -> tuple[SideResidual, dict]:
     """The fit of one pinion flank to its target flank (residual over the flank; the
     fit grid over ``box``, default the target's) or to measured points (``problem``:
     residual at the points), and the cut flank's :func:`~.settings_top_land.member_box`
     (its active box, as every reader of the settings traces it: a fold at the tip
-    refused, :func:`~.generated_box.check_tip_margin`; the cut flank is built on it)."""
+    refused, :func:`~.generated_box.check_tip_margin`; the cut flank is built on it).
+    ``path``: the target's contact path, the residual's curvature reported there and,
+    with ``fit_curvature``, fitted (:class:`~.residual_curvature.CurvedFitProblem`, the
+    subset with :data:`~.residual_curvature.CURVATURE_PARAMETERS`)."""
     if problem is not None:
         fit = solve_fit(problem, tolerance_um=1e-6, objective=objective,
                         started=time.perf_counter() - problem.setup_seconds)
+    elif path is not None and fit_curvature:
+        t0 = time.perf_counter()
+        names = checked_options(seed, tuple(parameters) + tuple(
+            n for n in CURVATURE_PARAMETERS if n not in parameters), tolerance_um=1e-6,
+            objective=objective)
+        curved = CurvedFitProblem(seed, pair.blank, target, names, *fit_grid(
+            target.boundary if box is None else box, n_u, n_v), path)
+        fit = solve_fit(curved, tolerance_um=1e-6, objective=objective, started=t0)
     else:
         fit = fit_pinion_setup(seed, pair.blank, target, parameters=parameters, n_u=n_u,
                                n_v=n_v, objective=objective, box=box)
@@ -229,11 +262,14 @@ def _side_fit(side, seed, target, problem, pair, conjugate, *, parameters, n_u, 
         u, v, res = flank_deviation_um(cut, target)
         eased = flank_deviation_um(conjugate, target)[2]
     kinks = tuple(KinkPosition(k.name, k.v_nodes, k.u_nodes) for k in cut.kinks) if kinked else ()
+    on_path = None if path is None or problem is not None else path_residual(
+        target, path, u, v, res)
     return SideResidual(side=side, fit=fit, easeoff_max_um=float(np.abs(eased).max()),
                         max_um=float(np.abs(res).max()), rms_um=float(np.sqrt(np.mean(res ** 2))),
                         u_mm=u, v_mm=v, residual_um=res,
                         points=target if problem is not None else None, kinks=kinks,
-                        box=cut.boundary), got
+                        box=cut.boundary, path=on_path,
+                        curvature_fitted=on_path is not None and fit_curvature), got
 
 
 def _relieved_box(seed, pair, target, *, where: str):
@@ -264,7 +300,8 @@ def _relieved_box(seed, pair, target, *, where: str):
 def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
                          parameters=DEFAULT_PARAMETERS, n_u: int = 9, n_v: int = 11,
                          objective: str = "rms", where: str = "target flank",
-                         reliefs: dict | None = None) -> EaseOffSettings:
+                         reliefs: dict | None = None, paths: dict | None = None,
+                         fit_curvature: bool = True) -> EaseOffSettings:
     """The machine settings that cut ``pair``'s flanks with its ease-off (issue item 4).
 
     The gear keeps the flanks of the pair's default (formate, or generated where the
@@ -306,6 +343,15 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
         flank is fitted as the deepest of its pieces (:mod:`.setting_fit`), a complete
         measured grid of it at its points (:func:`~.measuring_grid.target_grids`), and
         its residual and kink lines are reported over all its pieces.
+    paths : dict, optional
+        ``{side: PathCurvature}``: the target pair's contact path on that side
+        (:func:`gearcontact.tca.path_curvature.target_path_curvature`); the residual's
+        curvature there is reported (:attr:`SideResidual.path`) and, with
+        ``fit_curvature``, kept small by the fit's curvature rows
+        (:mod:`.residual_curvature`). Ignored for a side of scattered measured points.
+    fit_curvature : bool
+        Whether the ``paths`` sides are fitted with the curvature rows (else reported
+        only).
 
     Returns
     -------
@@ -383,7 +429,8 @@ def easeoff_machine_pair(pair, *, easeoff_grid: dict | None = None,
         sides[side], cut_boxes[side] = _side_fit(
             side, seeds[side], targets[side], problems.get(side), twin,
             flanks.pinion_conjugate.side(side), parameters=parameters, n_u=n_u, n_v=n_v,
-            objective=objective, box=boxes.get(side))
+            objective=objective, box=boxes.get(side), path=(paths or {}).get(side),
+            fit_curvature=fit_curvature)
     pinion = {side: r.fit.setup for side, r in sides.items()}
     setups = [gear[s] for s in SIDES] + [pinion[s] for s in SIDES]
     # the fitted pinion's top land along its tip line on the boxes traced above, as every

@@ -92,7 +92,7 @@ from .minimax_fit import minimize_max_abs
 __all__ = ["DEFAULT_PARAMETERS", "FORMATE_GEAR_PARAMETERS", "FitProblem",
            "GENERATED_GEAR_PARAMETERS", "PARAMETERS", "SEED_PARAMETERS", "SettingFit",
            "apply_corrections", "checked_options", "conjugate_seed", "default_parameters",
-           "fit_member_setup", "fit_pinion_setup", "flank_deviation_um", "sensitivity",
+           "fit_grid", "fit_member_setup", "fit_pinion_setup", "flank_deviation_um", "sensitivity",
            "solve_fit"]
 
 #: Fit parameters -> (unit, scale): one unit of the scaled variable is ``scale`` of the
@@ -362,15 +362,19 @@ def sensitivity(seed: MachineSetup, blank: BlankDesign, target, *, names=tuple(P
     :data:`PARAMETERS`) at the seed on the coarse fit grid, columns ``names``:
     ``(J, names)``. Its singular values and a column-pivoted QR show which subsets are
     well conditioned (docs/machine_settings.md sec. 6)."""
-    prob = FitProblem(seed, blank, target, names, *_fit_grid(target.boundary, n_u, n_v))
+    prob = FitProblem(seed, blank, target, names, *fit_grid(target.boundary, n_u, n_v))
     return prob.jacobian(np.zeros(len(names))), prob.names
 
 
-def _fit_grid(box, n_u: int, n_v: int):
+def fit_grid(box, n_u: int, n_v: int):
+    """The fit grid's node coordinates ``(us, vs)`` over ``box`` (n_u x n_v, each >= 3)."""
     if int(n_u) != n_u or n_u < 3 or int(n_v) != n_v or n_v < 3:
         raise InputRangeError("n_u, n_v (fit grid)", (n_u, n_v), "integers >= 3")
     return (np.linspace(box.u_root, box.u_tip, int(n_u)),
             np.linspace(box.v_toe, box.v_heel, int(n_v)))
+
+
+_fit_grid = fit_grid      # the name the tests import
 
 
 @dataclass(frozen=True)
@@ -504,7 +508,7 @@ def fit_member_setup(seed: MachineSetup, blank: BlankDesign, target, *,
                               "geometry.gear_correction)")
     t0 = time.perf_counter()
     prob = FitProblem(seed, blank, target, names,
-                      *_fit_grid(target.boundary if box is None else box, n_u, n_v))
+                      *fit_grid(target.boundary if box is None else box, n_u, n_v))
     return solve_fit(prob, tolerance_um=tolerance_um, objective=objective, started=t0)
 
 
@@ -542,14 +546,15 @@ def solve_fit(prob: FitProblem, *, tolerance_um: float, objective: str, started:
                         ftol=tolerance_um ** 2, xtol=1e-12, gtol=1e-12, max_nfev=200)
     s = np.linalg.svd(sol.jac, compute_uv=False)
     x = sol.x
-    dev = prob.deviation_um(x)
+    gap = getattr(prob, "gap_rows", None)   # rows past it: not deviations (their own fit)
+    dev = prob.deviation_um(x)[:gap]
     rms_fit_max = float(np.abs(dev).max())
     if objective == "minimax":
         x = minimize_max_abs(lambda y: prob.deviation_um(y, keep=True), prob.jacobian, x,
                              tol=tolerance_um).x
-        dev = prob.deviation_um(x)
+        dev = prob.deviation_um(x)[:gap]
     f0, j0 = prob.first
-    left = f0 - j0 @ np.linalg.lstsq(j0, f0, rcond=None)[0]
+    left = (f0 - j0 @ np.linalg.lstsq(j0, f0, rcond=None)[0])[:gap]
     return SettingFit(setup=prob.setup(x), seed=prob.seed,
                       corrections={n: float(v * sc) for n, v, sc in zip(names, x, prob.scale)},
                       fit_rms_um=float(np.sqrt(np.mean(dev ** 2))),
@@ -582,7 +587,7 @@ def flank_deviation_um(flank, target, *, n_u: int = 60, n_v: int = 75):
     a, b = flank.boundary, target.boundary
     box = dataclasses.replace(b, u_root=max(a.u_root, b.u_root), u_tip=min(a.u_tip, b.u_tip),
                               v_toe=max(a.v_toe, b.v_toe), v_heel=min(a.v_heel, b.v_heel))
-    U, V = np.meshgrid(*_fit_grid(box, n_u, n_v), indexing="ij")
+    U, V = np.meshgrid(*fit_grid(box, n_u, n_v), indexing="ij")
     f, t = flank.evaluate(U, V, second=False), target.evaluate(U, V, second=False)
     return U, V, 1e3 * np.einsum("...i,...i->...", f.r - t.r, t.n)
 
