@@ -1,5 +1,5 @@
 """`gearcontact design --machine-settings` asked for uncrowned settings (both crowning
-options 0), through the console script (docs/machine_settings.md sec. 5, "Uncrowned
+options 0), through the console script (docs/machine_settings.md sec. 4, "Uncrowned
 settings").
 
 Truth: a pinion cut by the generating surface complementary to the gear's, exact ratio
