@@ -30,6 +30,8 @@ from __future__ import annotations
 import dataclasses
 import math
 
+import numpy as np
+
 from .machine import MachineSetup, mirror_setup
 from .written_blade import STRAIGHT_DEVIATION_MM
 
@@ -77,9 +79,7 @@ def roll_reach(setup: MachineSetup, blank, *, pinion_face_width_mm: float
     """``(Psi, r_max)``: the largest ``|psi|`` (rad) and the largest radius from the
     pinion axis (mm) over the :data:`REACH_NODES` x :data:`REACH_NODES` node grid of the
     pinion flank ``setup`` generates (its active flank with the node margin)."""
-    import numpy as np
-
-    from .generated import generated_pinion_flank
+    from .generated import generated_pinion_flank     # the envelope: imported on use
 
     _, nodes = generated_pinion_flank(setup, blank, pinion_face_width_mm=pinion_face_width_mm,
                                       n_u=REACH_NODES, n_v=REACH_NODES)
