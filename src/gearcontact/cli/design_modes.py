@@ -276,7 +276,8 @@ def easeoff_settings(args, pair) -> int:
     if gear is not None:
         fit = dataclasses.replace(fit, pair=corrected_pair(fit.pair, gear))
     # the fit's roll of rounding written as its seed's, then the blades' (sec. 5)
-    written, roll_notes = written_rolls(fit.pair, {s: r.fit for s, r in fit.sides.items()})
+    written, roll_notes = written_rolls(fit.pair, {s: r.fit for s, r in fit.sides.items()},
+                                        boxes={s: r.box for s, r in fit.sides.items()})
     written, notes = written_pair(written, members=("pinion", "gear") if gear else ("pinion",))
     notes = roll_notes + notes
     fit = dataclasses.replace(fit, pair=written)

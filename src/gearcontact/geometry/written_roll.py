@@ -32,6 +32,7 @@ import math
 
 import numpy as np
 
+from .conjugate import UndercutError
 from .machine import MachineSetup, mirror_setup
 from .written_blade import STRAIGHT_DEVIATION_MM
 
@@ -74,15 +75,21 @@ def motion_departure_mm(setup: MachineSetup, seed: MachineSetup, *, psi_max_rad:
     return radius_mm * turn + slide
 
 
-def roll_reach(setup: MachineSetup, blank, *, pinion_face_width_mm: float
+def roll_reach(setup: MachineSetup, blank, *, pinion_face_width_mm: float, box=None
                ) -> tuple[float, float]:
     """``(Psi, r_max)``: the largest ``|psi|`` (rad) and the largest radius from the
     pinion axis (mm) over the :data:`REACH_NODES` x :data:`REACH_NODES` node grid of the
-    pinion flank ``setup`` generates (its active flank with the node margin)."""
+    pinion flank ``setup`` generates (its active flank with the node margin; ``box``:
+    that active box when already traced, a :class:`~.formate.FlankBoundary`).
+
+    Raises
+    ------
+    UndercutError
+        The envelope does not reach a node of the grid."""
     from .generated import generated_pinion_flank     # the envelope: imported on use
 
     _, nodes = generated_pinion_flank(setup, blank, pinion_face_width_mm=pinion_face_width_mm,
-                                      n_u=REACH_NODES, n_v=REACH_NODES)
+                                      n_u=REACH_NODES, n_v=REACH_NODES, box=box)
     radius = np.hypot(nodes.x_mm[..., 1], nodes.x_mm[..., 2])   # pinion axis: body x
     return float(np.max(np.abs(nodes.psi_rad))), float(np.max(radius))
 
@@ -105,11 +112,12 @@ def _motion_words(setup: MachineSetup) -> str:
     return ", ".join(words)
 
 
-def written_rolls(cut, fits: dict):
+def written_rolls(cut, fits: dict, *, boxes: dict | None = None):
     """``cut`` with each fitted pinion side whose generating motion departs from its
     seed's by less than :data:`~.written_blade.STRAIGHT_DEVIATION_MM` over its flank
     (:func:`motion_departure_mm`) written with its seed's roll and helical motion, and
-    the lines for the written file's head naming each.
+    the lines for the written file's head naming each. A side whose flank's node grid
+    the envelope does not reach is written as fitted (no bound, no claim).
 
     Parameters
     ----------
@@ -118,6 +126,9 @@ def written_rolls(cut, fits: dict):
     fits : dict
         ``{side: SettingFit}`` of the pinion (``setup`` and ``seed`` on the right-hand
         twin, as :func:`~.easeoff_settings.easeoff_machine_pair` fits them).
+    boxes : dict, optional
+        ``{side: FlankBoundary}``: the fitted flanks' active boxes, already traced (the
+        fit's ``SideResidual.box``); traced here where missing.
 
     Returns
     -------
@@ -131,8 +142,13 @@ def written_rolls(cut, fits: dict):
         if fit is None or setup.blade.relieved or seed_roll(fit.setup, fit.seed) == fit.setup:
             machine.append(setup)
             continue
-        psi_max, radius = roll_reach(fit.setup, twin.blank,
-                                     pinion_face_width_mm=twin.pinion_face_width_mm)
+        try:
+            psi_max, radius = roll_reach(fit.setup, twin.blank,
+                                         pinion_face_width_mm=twin.pinion_face_width_mm,
+                                         box=(boxes or {}).get(setup.side))
+        except UndercutError:
+            machine.append(setup)
+            continue
         dev = motion_departure_mm(fit.setup, fit.seed, psi_max_rad=psi_max, radius_mm=radius)
         if dev < STRAIGHT_DEVIATION_MM:
             seed = mirror_setup(fit.seed) if left else fit.seed
