@@ -123,12 +123,13 @@ def test_an_undercut_names_the_gear_addendum_factor_as_the_file_spells_it(tmp_pa
 
 def test_a_gear_sliding_base_in_inches_is_named_with_its_unit(tmp_path):
     """-5.6402 mm typed in inches (-0.2221): the gear flanks reach their mean point, 0.22
-    mm behind the tip plane against the blank's 5.64 (not gross by the check's bounds:
-    docs sec. 2), inside the blade's 0.4 mm edge round, which the check refuses. Before:
-    the library named that refusal "blade.gear.drive.edge_radius_mm = 0.4 ... (25.4 times
-    too large? ...)", a key typed right; the command line renamed it to the slip without
-    its unit. Now the check names the slip as typed and the conversion, the edge
-    round's finding kept, exit 2."""
+    mm behind the tip plane against the blank's 5.64, inside the blade's 0.4 mm edge
+    round. Session 27: the library named the edge round's refusal
+    "blade.gear.drive.edge_radius_mm = 0.4 ... (25.4 times too large? ...)", a key typed
+    right; session 28 named the slip as typed and the conversion, the edge round's
+    finding kept. Since session 29 the comparison refuses it first: its root lies above
+    the mating tip (docs sec. 2, "A root above the mating tip"), whatever the edge
+    radius; exit 2."""
     code, _, err = run_console("design", "--pair", _typed(
         tmp_path, F2_MACHINE, {"sliding_base_mm = -5.6402": "sliding_base_mm = -0.2221"}))
     line = _error_line(err)
@@ -136,4 +137,4 @@ def test_a_gear_sliding_base_in_inches_is_named_with_its_unit(tmp_path):
     assert line.startswith("gearcontact design: error: machine.gear.drive.sliding_base_mm = "
                            "-0.2221 is outside the allowed range: "), line
     assert "with the unit corrected (typed in inches: x 25.4 mm) the flank agrees" in line
-    assert "blade.gear.drive.edge_radius_mm = 0.4" in line      # the finding, kept
+    assert "the root above the mating tip, which runs 4.8369 mm deep" in line

@@ -45,9 +45,11 @@ def _named(err: str, key: str) -> None:
 
 
 def test_tca_records_a_settings_warning_in_run_json(tmp_path):
-    # the pinion's machine root 1 deg off (no known slip; the flanks stay regular): a
-    # warning, not an error: the run goes on (exit 0) and its run.json says it
-    path = _flipped(tmp_path, "machine.pinion", "machine_root_angle_deg", lambda x: x + 1.0)
+    # the pinion's machine root 0.5 deg off (no known slip; the flanks stay regular): a
+    # warning, not an error: the run goes on (exit 0) and its run.json says it (1 deg
+    # puts the pinion root above the mating tip: refused since session 29, docs
+    # sec. 2, "A root above the mating tip")
+    path = _flipped(tmp_path, "machine.pinion", "machine_root_angle_deg", lambda x: x + 0.5)
     code, out, err = run_console("tca", "--pair", path, "--out", tmp_path / "t", *TCA)
     assert code == 0, err
     got = json.loads((tmp_path / "t" / "run.json").read_text())["blank_check"]

@@ -123,6 +123,20 @@ def test_readme_s0003_machine_settings_line(tmp_path):
     assert "# blade.pinion.drive.profile_radius_mm / profile_cubic_per_mm2: the derived " \
         "profile" in head and "written straight (0)" in head
     assert "refuse this side" in head
+    # and its roll: the fit leaves ratio 10.00000000027, 2C -1.2e-11, 6D -8.7e-11 there
+    # (session 29), a flank displacement of at most 5e-10 mm against the seed's roll
+    # (geometry.written_roll's bound, brute force 2.2e-10 mm:
+    # tests/geometry/test_written_roll.py), below its 1 nm rule: written as the seed's,
+    # the conjugate pinion's of a formate gear, whose ratio of roll is z2 / z1 = 70 / 7
+    # exactly (the gear is its own generating gear), no modified roll
+    assert drive.settings.ratio_of_roll == 70 / 7 == 10.0
+    assert (drive.settings.modified_roll, drive.settings.helical_motion) == ((), ())
+    assert "# machine.pinion.drive: the fitted motion (ratio of roll 10.0000000003, 2C " \
+        "-1.22e-11, 6D -8.75e-11) departs" in head and "written as the seed's (ratio " \
+        "of roll 10)" in head
+    # every other value written as fitted: the coast keeps its roll (a departure of
+    # 0.0635 in the ratio is no rounding)
+    assert coast.settings.ratio_of_roll != 10.0 and len(coast.settings.modified_roll) == 2
     assert (tmp_path / "mach_s0003" / "machine_settings_residual.svg").is_file()
 
 

@@ -12,6 +12,7 @@ from ..errors import CheckFailed
 from ..geometry.formate import SIDES
 from ..geometry.pair import has_easeoff
 from ..geometry.written_blade import written_pair
+from ..geometry.written_roll import written_rolls
 from ..validation import InputRangeError
 from .design_options import checked_targets, path_angle_option, renamed
 from .outdir import final_path
@@ -297,7 +298,11 @@ def easeoff_settings(args, pair) -> int:
         raise grid_relief_named(exc, args.target_flank) from None
     if gear is not None:
         fit = dataclasses.replace(fit, pair=corrected_pair(fit.pair, gear))
-    written, notes = written_pair(fit.pair, members=("pinion", "gear") if gear else ("pinion",))
+    # the fit's roll of rounding written as its seed's, then the blades' (sec. 5)
+    written, roll_notes = written_rolls(fit.pair, {s: r.fit for s, r in fit.sides.items()},
+                                        boxes={s: r.box for s, r in fit.sides.items()})
+    written, notes = written_pair(written, members=("pinion", "gear") if gear else ("pinion",))
+    notes = roll_notes + notes
     fit = dataclasses.replace(fit, pair=written)
     refuse_gap(args, pair, fit.pair)
     # a side fitted to a zero ease-off is cut uncrowned: the conjugate pinion's settings

@@ -24,7 +24,9 @@ tooth, and everything downstream is silently wrong. Compared per flank:
   against the blank's mean dedendum (the blade tips cut the root, so the mean point lies
   a dedendum behind the tip plane, up to the spread of a slot and a tilted cutter),
   which sees the sliding base and the machine
-  centre to back;
+  centre to back; a root datum shallower than the dedendum by more than the blank's
+  clearance beyond its tolerance lies above the mate's tip (a gross mismatch, docs sec.
+  2, "A root above the mating tip");
 - a flank that does not reach its mean point is a reported result.
 
 Tolerances: the typed settings' rounding propagated (each non-zero setting moved by half
@@ -55,7 +57,8 @@ import re
 
 from ..validation import InputRangeError
 from .blank_statement import StatedBlank, printed_stated_blank, stated_blank
-from .blank_verdict import GROSS_FACE_QUANTITY, BlankCheck, Comparison, FlankCheck
+from .blank_verdict import (GROSS_FACE_QUANTITY, GROSS_ROOT_QUANTITY, BlankCheck, Comparison,
+                            FlankCheck)
 from .conjugate import UndercutError
 from .flank_angles import (FlankMeanPoint, GeneratingGearAngles, generating_circle,
                            measure_generating_angles, measure_mean_point, require_machine)
@@ -268,15 +271,21 @@ def _compare(setup, stated, tol=None, hand=None, measured: FlankMeanPoint | None
             "rounding loses it")), tol
     want = _stated_values(setup.member, setup.side, stated, hand)
     rows = tuple(Comparison(q, _UNITS[q], values[q], want[q], tol.get(q),
-                            _gross_bound(q, stated)) for q in values)
+                            _gross_bound(q, stated, tol.get(q))) for q in values)
     return FlankCheck(setup.member, setup.side, rows), tol
 
 
-def _gross_bound(quantity: str, stated: StatedBlank) -> float | None:
-    """The :attr:`Comparison.gross_bound` of ``quantity`` against ``stated``."""
+def _gross_bound(quantity: str, stated: StatedBlank, tol: float | None = None
+                 ) -> float | None:
+    """The :attr:`Comparison.gross_bound` of ``quantity`` against ``stated`` (``tol``:
+    its tolerance; the root datum's bound is the clearance beyond it, docs sec. 2, "A
+    root above the mating tip")."""
     if quantity == GROSS_FACE_QUANTITY:
         face = stated.gear_face_width_mm
         return None if face is None else GROSS_CONE_FACE_FRACTION * face
+    if quantity == GROSS_ROOT_QUANTITY:
+        c = stated.clearance_mm
+        return None if c is None or tol is None else c + tol
     return _GROSS.get(quantity)
 
 
@@ -439,13 +448,14 @@ def check_flanks(setups, stated: StatedBlank, *, measured=None,
         if not f.agrees and not hand_slip:
             datum = st.mctb_datum_mm.get(s.member, 0.0)
             compare = _Compare(st, tol, screened=screened)
-            key, value, word, also = single_slip(s, datum, compare)
+            key, value, word, also = single_slip(s, datum, compare, printed=bool(st.printed))
             f = dataclasses.replace(f, slip=key, slip_value=value, slip_word=word,
                                     slip_also=also)
             if not key:
                 f = dataclasses.replace(f, single_keys=_single_keys(s, st, tol, f))
             if not key and not f.single_keys:
-                key, value, word, also = pair_slip(s, datum, compare)
+                key, value, word, also = pair_slip(s, datum, compare,
+                                                   printed=bool(st.printed))
                 f = dataclasses.replace(f, slip=key, slip_value=value, slip_word=word,
                                         slip_also=also, typed=() if key else tuple(
                                             (full_key(s, k), setting(s, k)) for k in attributed_keys(s)))

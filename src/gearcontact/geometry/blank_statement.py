@@ -53,6 +53,11 @@ class StatedBlank:
         towards the member's back, mm: a sheet's MD measured from the crossing point is
         typed as ``X_D = MD + datum`` (docs sec. 2), so its sign slip is ``X_D -> 2 datum
         - X_D``; tried where non-zero.
+    clearance_mm : float or None
+        The blank's mean clearance ``c``, mm (the dedendum less the mate's addendum): a
+        root datum shallower than the stated dedendum by more than ``c`` plus its
+        tolerance lies above the mate's tip, an input error
+        (:data:`~.blank_verdict.GROSS_ROOT_QUANTITY`); None: no such bound.
     gear_face_width_mm : float or None
         The gear's face width, mm: a generating gear's mean cone distance off the stated
         one by more than half of it lies off the gear's face, an input error
@@ -78,6 +83,7 @@ class StatedBlank:
     mctb_datum_mm: dict = dataclasses.field(default_factory=dict)
     printed: tuple = ()
     gear_face_width_mm: float | None = None
+    clearance_mm: float | None = None
 
 
 def stated_blank(pair) -> StatedBlank:
@@ -95,6 +101,7 @@ def stated_blank(pair) -> StatedBlank:
                             "coast": b.pressure_angle_coast_deg},
         gear_hand=other[pair.pinion_hand], cutter_radius_mm=pair.cutter.radius_mm,
         hand_value=pair.pinion_hand, gear_face_width_mm=pair.gear_face_width_mm,
+        clearance_mm=b.clearance_mm,
         # the pitch apexes on the axes in the meshing frame, the crossing point at 0 and
         # each body on the + side (geometry.blank)
         mctb_datum_mm={"gear": b.gear_apex_z_mm, "pinion": b.pinion_apex_x_mm})

@@ -21,11 +21,16 @@ from .blank_statement import StatedBlank
 from .known_slips import slip_fix, with_slip
 from .slip_attribution import describe, interval
 
-__all__ = ["GROSS_FACE_QUANTITY", "BlankCheck", "Comparison", "FlankCheck", "slip_renamed"]
+__all__ = ["GROSS_FACE_QUANTITY", "GROSS_ROOT_QUANTITY", "BlankCheck", "Comparison", "FlankCheck", "slip_renamed"]
 
 #: The quantity whose gross bound is a fraction of the gear face
 #: (:data:`~.blank_check.GROSS_CONE_FACE_FRACTION`).
 GROSS_FACE_QUANTITY = "mean cone distance"
+#: The quantity whose gross bound is one-sided: a root datum shallower than the stated
+#: dedendum by more than the clearance plus its tolerance lies above the mate's tip
+#: (docs/machine_settings.md sec. 2, "A root above the mating tip"); deeper is no gross
+#: mismatch.
+GROSS_ROOT_QUANTITY = "root depth"
 
 
 @dataclass(frozen=True)
@@ -33,7 +38,8 @@ class Comparison:
     """One measured value against the stated one: ``quantity``, ``unit``, ``measured``,
     ``stated``, ``tolerance`` (None for the hand) and ``within``; ``gross_bound``: the
     difference beyond which the flank is not the blank's tooth (an input error,
-    :attr:`gross`), None where there is none."""
+    :attr:`gross`; for :data:`GROSS_ROOT_QUANTITY` a root datum below the stated one
+    only), None where there is none."""
 
     quantity: str
     unit: str
@@ -54,8 +60,12 @@ class Comparison:
         :attr:`gross_bound`."""
         if self.within:
             return False
-        return self.tolerance is None or (self.gross_bound is not None and abs(
-            self.measured - self.stated) > self.gross_bound)
+        if self.tolerance is None:
+            return True
+        off = self.measured - self.stated
+        if self.quantity == GROSS_ROOT_QUANTITY:
+            off = min(off, 0.0)           # one-sided: a root shallower than the blank's
+        return self.gross_bound is not None and abs(off) > self.gross_bound
 
 
 @dataclass(frozen=True)
@@ -95,9 +105,9 @@ class FlankCheck:
     @property
     def gross(self) -> bool:
         """The hand against the blank's, a spiral angle off by more than
-        :data:`~.blank_check.GROSS_SPIRAL_DEG`, a pressure angle by more than :data:`~.blank_check.GROSS_PRESSURE_DEG`
-        or a gear's mean cone distance by more than :data:`~.blank_check.GROSS_CONE_FACE_FRACTION` of
-        the face (:attr:`Comparison.gross`; of a flank that does not reach its mean point,
+        :data:`~.blank_check.GROSS_SPIRAL_DEG`, a pressure angle by more than :data:`~.blank_check.GROSS_PRESSURE_DEG`,
+        a gear's mean cone distance by more than :data:`~.blank_check.GROSS_CONE_FACE_FRACTION` of
+        the face or a root datum above the mating tip (:data:`GROSS_ROOT_QUANTITY`) (:attr:`Comparison.gross`; of a flank that does not reach its mean point,
         its generating gear's in closed form, :attr:`reach`); or a flank that does not
         reach its mean point and that a unit slip of one key makes agree (:attr:`slip`, a
         unit word: the typed value a unit factor from one that cuts the blank's tooth;
@@ -137,7 +147,7 @@ class BlankCheck:
                                   "sec. 2)")
         f = next((f for f in bad if f.slip), bad[0])
         if f.slip:
-            also = [g.slip for g in bad if g.slip and g is not f]
+            also = list(dict.fromkeys(g.slip for g in bad if g.slip and g.slip != f.slip))
             raise InputRangeError(f.slip, f.slip_value,
                                   f"the {slip_fix(f.slip_word)} that cuts {_blank(f)}'s "
                                   f"tooth ({what}; {with_slip(f.slip_word)} the flank agrees "
@@ -233,13 +243,19 @@ def _rows(f: FlankCheck, rows) -> str:
     return ", ".join(
         f"{c.quantity} {c.measured}, {_blank(f)}'s {c.stated}" if c.tolerance is None else
         f"{c.quantity} {c.measured:.4f} {c.unit}, {_blank(f)}'s {c.stated:.4f} (tolerance "
-        f"{c.tolerance:.2g}{_off_face(c)})" for c in rows)
+        f"{c.tolerance:.2g}{_gross_words(c)})" for c in rows)
 
 
-def _off_face(c: Comparison) -> str:
-    """``"; off the gear's face, <from> to <to> mm"`` for a gross mean cone distance, else
-    ""."""
-    if c.quantity != GROSS_FACE_QUANTITY or not c.gross:
+def _gross_words(c: Comparison) -> str:
+    """``"; off the gear's face, <from> to <to> mm"`` for a gross mean cone distance,
+    ``"; above the mating tip: ..."`` for a gross root datum, else ""."""
+    if not c.gross or c.quantity not in (GROSS_FACE_QUANTITY, GROSS_ROOT_QUANTITY):
         return ""
+    if c.quantity == GROSS_ROOT_QUANTITY:
+        clearance = c.gross_bound - c.tolerance
+        return (f"; the root above the mating tip, which runs {c.stated - clearance:.4f} "
+                f"{c.unit} deep (the dedendum less the clearance {clearance:.4f} "
+                f"{c.unit}): shallower than {c.stated - c.gross_bound:.4f} {c.unit} the "
+                "pair cannot mesh")
     return (f"; off the gear's face, {c.stated - c.gross_bound:.4f} to "
             f"{c.stated + c.gross_bound:.4f} {c.unit}")

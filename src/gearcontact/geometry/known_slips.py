@@ -22,7 +22,8 @@ from .machine import MODIFIED_ROLL_KEYS, MachineSetup
 from .print_words import INCH_MM  # the one inch (a print's unit)
 from .typed_settings import full_key, moved, setting
 
-__all__ = ["INCH_MM", "SLIPS", "UNIT_SIGN_SLIPS", "UNIT_SLIPS", "Compare", "applicable",
+__all__ = ["INCH_MM", "PRINT_UNIT_SLIPS", "SLIPS", "UNIT_SIGN_SLIPS", "UNIT_SLIPS", "Compare",
+           "applicable",
            "pair_slip", "single_slip", "slip_fix", "with_slip"]
 
 
@@ -78,6 +79,12 @@ UNIT_SIGN_SLIPS = tuple((k, lambda x, fn=fn: -fn(x), f"{word} and the other sign
                         if k in ("blank_offset_mm", "sliding_base_mm", "cradle_angle_deg",
                                  "machine_centre_to_back_mm"))
 _UNIT = (*UNIT_SLIPS, *UNIT_SIGN_SLIPS)
+#: The unit slips of a gear typed as a print (``[print.gear]``, lengths in inches,
+#: converted to the mm keys x 25.4), tried with :data:`UNIT_SLIPS` where the statement
+#: is a print's: the radial typed in metres (``radial_in = 0.1043`` for 4.108 in; its
+#: mm key 2.649 mm, which neither x 1000 nor x 25.4 brings to the page's 104.3 mm).
+PRINT_UNIT_SLIPS = (("radial_distance_mm", lambda x: x * 1000.0 / INCH_MM,
+                     "unit corrected (typed in metres: x 1000 / 25.4 in)"),)
 
 
 def slip_fix(word: str) -> str:
@@ -94,16 +101,18 @@ def with_slip(word: str) -> str:
 
 
 
-def applicable(setup: MachineSetup, datum: float) -> list:
+def applicable(setup: MachineSetup, datum: float, *, printed: bool = False) -> list:
     """The slips of :data:`SLIPS`, the MD word read from the crossing point (``datum``:
     the member's pitch apex from the crossing point towards its back, mm; tried where
     non-zero: ``X_D -> 2 datum - X_D``) and :data:`UNIT_SLIPS` / :data:`UNIT_SIGN_SLIPS`
-    that change a typed value of ``setup`` within its range."""
+    (and, ``printed``: settings converted from a print, :data:`PRINT_UNIT_SLIPS`) that
+    change a typed value of ``setup`` within its range."""
     md = ("machine_centre_to_back_mm", lambda x: 2.0 * datum - x,
           f"MD sign, MD read from the crossing point (X_D = MD {datum:+.4f} mm, the pitch "
           "apex's offset)")
     out = []
-    for slip in (*SLIPS, *((md,) if datum != 0.0 else ()), *_UNIT):
+    for slip in (*SLIPS, *((md,) if datum != 0.0 else ()), *_UNIT,
+                 *(PRINT_UNIT_SLIPS if printed else ())):
         key, fn, _ = slip
         value = setting(setup, key)
         if value == 0.0 and slip is not md or abs(fn(value) - value) <= _SAME:
@@ -125,7 +134,7 @@ def _undone(setup: MachineSetup, compare: Compare, slips):
     fixed = setup
     for key, fn, _ in slips:
         fixed = moved(fixed, key, fn)
-    units = [s for s in slips if s in _UNIT]
+    units = [s for s in slips if _is_unit(s)]
     rounding = None
     if units:
         rounding = compare.roundings(setup)
@@ -164,22 +173,29 @@ def _best(setup: MachineSetup, compare: Compare, fixes) -> tuple:
     return (*found[0][1:4], tuple(f[4] for f in found[1:]))
 
 
-def single_slip(setup: MachineSetup, datum: float, compare: Compare) -> tuple:
-    """``(key, typed value, word, other keys)`` of the single slip (:func:`applicable`)
-    under which the flank agrees best (:func:`_best`), or ``("", None, "", ())``: the
-    sign words first, the unit slips only where no sign word explains the flank (each
-    costs a solve from the grid of starts where the flank misses: 3x the check's time,
-    docs sec. 2)."""
-    slips = applicable(setup, datum)
-    got = _best(setup, compare, [(s,) for s in slips if s not in _UNIT])
-    return got if got[0] else _best(setup, compare, [(s,) for s in slips if s in _UNIT])
+def _is_unit(slip) -> bool:
+    """A unit slip (:data:`UNIT_SLIPS`, :data:`UNIT_SIGN_SLIPS`, :data:`PRINT_UNIT_SLIPS`)."""
+    return slip in _UNIT or slip in PRINT_UNIT_SLIPS
 
 
-def pair_slip(setup: MachineSetup, datum: float, compare: Compare) -> tuple:
+def single_slip(setup: MachineSetup, datum: float, compare: Compare, *,
+                printed: bool = False) -> tuple:
+    """``(key, typed value, word, other keys)`` of the single slip (:func:`applicable`;
+    ``printed``: settings converted from a print) under which the flank agrees best
+    (:func:`_best`), or ``("", None, "", ())``: the sign words first, the unit slips only
+    where no sign word explains the flank (each costs a solve from the grid of starts
+    where the flank misses: 3x the check's time, docs sec. 2)."""
+    slips = applicable(setup, datum, printed=printed)
+    got = _best(setup, compare, [(s,) for s in slips if not _is_unit(s)])
+    return got if got[0] else _best(setup, compare, [(s,) for s in slips if _is_unit(s)])
+
+
+def pair_slip(setup: MachineSetup, datum: float, compare: Compare, *,
+              printed: bool = False) -> tuple:
     """As :func:`single_slip`, of two slips of distinct keys: a sign word and a sign word
     or a unit slip (two unit slips, and :data:`UNIT_SIGN_SLIPS`, are not paired: ~3
     times the cost, docs sec. 2). The key is the first slip's, the word names the
     second's; the other keys read ``"<key> and <key>"``."""
-    slips = [s for s in applicable(setup, datum) if s not in UNIT_SIGN_SLIPS]
+    slips = [s for s in applicable(setup, datum, printed=printed) if s not in UNIT_SIGN_SLIPS]
     return _best(setup, compare, [(a, b) for a, b in combinations(slips, 2)
-                                  if a[0] != b[0] and not (a in _UNIT and b in _UNIT)])
+                                  if a[0] != b[0] and not (_is_unit(a) and _is_unit(b))])
