@@ -41,7 +41,7 @@ from gearcontact.geometry.pair import load_pair
 from gearcontact.geometry.point_fit import PointProblem
 from gearcontact.geometry.setting_fit import (FORMATE_GEAR_PARAMETERS,
                                               GENERATED_GEAR_PARAMETERS, FitProblem,
-                                              _fit_grid, apply_corrections,
+                                              fit_grid, apply_corrections,
                                               default_parameters, fit_member_setup)
 from gearcontact.validation import InputRangeError
 
@@ -156,7 +156,7 @@ def test_generated_gear_sheet_target_on_the_fit_grid():
                                      gear_face_width_mm=pair.gear_face_width_mm)
     fit = fit_member_setup(seed, pair.blank, target)
     assert fit.status > 0 and fit.fit_max_um < 0.01
-    grid = _fit_grid(target.boundary, 9, 11)
+    grid = fit_grid(target.boundary, 9, 11)
     prob = FitProblem(seed, pair.blank, target, names, *grid)
     x = np.array([fit.corrections[n] for n in names]) / prob.scale
     jac = prob.jacobian(x)

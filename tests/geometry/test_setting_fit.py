@@ -328,7 +328,7 @@ def test_cradle_angle_is_a_rigid_turn_about_the_work_axis():
     # R_a * (1e-3 deg in rad) times the lever R (e_psi . n) of every node (exact in
     # d; measured relative spread 5e-8: the envelope solves' rounding through the
     # forward difference), asserted to 1e-6
-    from gearcontact.geometry.setting_fit import _fit_grid, FitProblem, sensitivity
+    from gearcontact.geometry.setting_fit import fit_grid, FitProblem, sensitivity
 
     pair = load_pair("s0003")
     seed = complementary_pinion_setups(pair)["drive"]
@@ -337,7 +337,7 @@ def test_cradle_angle_is_a_rigid_turn_about_the_work_axis():
     jac, names = sensitivity(seed, pair.blank, target, names=("cradle_angle_deg",), n_u=5,
                              n_v=6)
     lever = FitProblem(seed, pair.blank, target, names,
-                     *_fit_grid(target.boundary, 5, 6)).lever_um.ravel()
+                     *fit_grid(target.boundary, 5, 6)).lever_um.ravel()
     want = seed.settings.ratio_of_roll * math.radians(1e-3)
     assert jac[:, 0] / lever == pytest.approx(np.full(30, want), rel=1e-6)
 
@@ -373,7 +373,7 @@ def test_minimax_fit_of_s0003_coast():
     # parameters: at least n + 1 = 9 grid nodes reach the maximum (to 1e-4 um; measured
     # 9, against 1 for the least-squares fit); (c) the fit's RMS is not below the least
     # squares' (0.148 um, its optimum: measured 0.181 um)
-    from gearcontact.geometry.setting_fit import DEFAULT_PARAMETERS, _fit_grid, FitProblem
+    from gearcontact.geometry.setting_fit import DEFAULT_PARAMETERS, fit_grid, FitProblem
 
     pair = load_pair("s0003")
     target = build_flanks(pair, n_u=30, n_v=40).pinion.side("coast")
@@ -383,7 +383,7 @@ def test_minimax_fit_of_s0003_coast():
     assert fit.rms_fit_max_um == pytest.approx(0.560, abs=0.01)
     assert fit.fit_max_um < 0.35
     prob = FitProblem(seed, pair.blank, target, DEFAULT_PARAMETERS,
-                    *_fit_grid(target.boundary, 9, 11))
+                    *fit_grid(target.boundary, 9, 11))
     dev = prob.deviation_um(np.array([fit.corrections[n] for n in DEFAULT_PARAMETERS])
                             / prob.scale)
     assert np.abs(dev).max() == pytest.approx(fit.fit_max_um, abs=1e-9)

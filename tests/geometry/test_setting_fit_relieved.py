@@ -158,7 +158,7 @@ def test_toprem_and_flankrem_three_pieces_recovered_on_the_fit_grid():
     # 2.1e-4 / 5.9e-5 / 1.6e-5 um, toprem / main / flankrem), both kink lines within
     # 2.5e-4 mm (measured 1.3e-7 / 1.6e-8 mm)
     from gearcontact.geometry.relief_setup import with_relief
-    from gearcontact.geometry.setting_fit import FitProblem, _fit_grid
+    from gearcontact.geometry.setting_fit import FitProblem, fit_grid
 
     pair = load_pair(TOPREM)
     own = _pinion(pair, "drive")
@@ -170,7 +170,7 @@ def test_toprem_and_flankrem_three_pieces_recovered_on_the_fit_grid():
     assert target.names == ("toprem", "main", "flankrem")
     fit = fit_pinion_setup(seed, pair.blank, target)
     assert fit.status > 0 and blade_relief(fit.setup.blade) == blade_relief(own.blade)
-    names, grid = DEFAULT_PARAMETERS, _fit_grid(target.boundary, 9, 11)
+    names, grid = DEFAULT_PARAMETERS, fit_grid(target.boundary, 9, 11)
     prob = FitProblem(seed, pair.blank, target, names, *grid)
     jac = prob.jacobian(np.array([fit.corrections[n] for n in names]) / prob.scale)
     e = FitProblem(own, pair.blank, target, names, *grid).deviation_um(np.zeros(len(names)))

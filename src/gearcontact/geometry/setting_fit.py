@@ -374,9 +374,6 @@ def fit_grid(box, n_u: int, n_v: int):
             np.linspace(box.v_toe, box.v_heel, int(n_v)))
 
 
-_fit_grid = fit_grid      # the name the tests import
-
-
 @dataclass(frozen=True)
 class SettingFit:
     """A fitted pinion flank set-up and its residual against the target.
