@@ -28,7 +28,7 @@ import pytest
 from gearcontact.tca import setting_candidates as sc
 from gearcontact.tca import setting_synthesis as ss
 from gearcontact.tca.setting_band import DepthNeed, depth_need, ellipse_depth_half_mm
-from gearcontact.tca.setting_pivot import depth_targets
+from gearcontact.tca.setting_pivot import depth_fitting_targets, depth_targets
 from gearcontact.tca.synthesis_targets import SynthesisTargets
 
 
@@ -165,15 +165,73 @@ def test_lever_7_is_wired_after_lever_6(monkeypatch):
             edges = 9
         return {s: _kept(edges=edges, angle=t.path_angle_deg or 55.0)}
 
+    built = []
+
+    def problem(pair, **kw):
+        built.append(kw)
+        return SimpleNamespace(point_contact=True, pivot={"drive": "centred"})
+
     monkeypatch.setattr(sc, "room_pivot", lambda *a, **k: None)
+    monkeypatch.setattr(sc, "SynthesisProblem", problem)
+    # 7c: the base path's point at the depth's middle (its rule: the slow test below)
+    monkeypatch.setattr(sc, "depth_centre_pivot", lambda r, prob, *, side, asked: (
+        (5.77, 73.9) if r.point.path_angle_deg == 25.0 else None))
     pair = SimpleNamespace(gear_face_width_mm=face, name="stand-in")
     t = SynthesisTargets(pattern_length_ratio=5.36 / face)
     start = dataclasses.replace(_kept(edges=15, angle=55.0), pivot="node")
     got = sc.pivot_candidates(pair, {"drive": start}, t, ("drive",), {}, True, node=node,
                               problem={"gear": None}, synthesize=synth)
     fit = round(_need().fitting_length_mm(), 9)
-    # lever 7 on lever 6's candidate: the fitting ellipse, then the path turned to 0
-    assert asked == [(5.36, 25.0), (fit, 25.0), (5.36, 0.0)]
+    # lever 7 on lever 6's candidate: the fitting ellipse, the path turned to 0, then
+    # the fitting ellipse (lever 6's path kept) at the pivot moved to the depth's middle
+    assert asked == [(5.36, 25.0), (fit, 25.0), (5.36, 0.0), (fit, 25.0)]
+    assert built == [{"gear": None, "pivot_uv": {"drive": (5.77, 73.9)}}]
     assert got["drive"].edge_phases == 4
     assert got["drive"].pivot == ("M, its path at M turned towards lengthwise once more, "
                                   "to 0.0 deg")
+    assert "M, moved along the base's path to the middle of the working depth, the paint " \
+        f"ellipse's target {fit:.2f} mm: paint ellipse at a flank edge at 9 of 31" in \
+        got["drive"].other_pivot
+
+
+def test_depth_fitting_targets_by_hand():
+    face = 31.75
+    t = SynthesisTargets(pattern_length_ratio=5.36 / face, path_angle_deg=25.0)
+    assert depth_fitting_targets(_kept(), t, face_mm=face) == dataclasses.replace(
+        t, pattern_length_ratio=_need().fitting_length_mm() / face)
+    # not "shorter", or no need: the targets as they are
+    for need in (_need(travel_mm=2.0), _need(travel_mm=5.5)):
+        assert depth_fitting_targets(_kept(need=need), t, face_mm=face) is t
+    assert depth_fitting_targets(dataclasses.replace(_kept(), depth=None), t,
+                                 face_mm=face) is t
+
+
+@pytest.mark.slow
+def test_depth_centre_pivot_on_the_print():
+    # ~15 s (a problem of the print's twin, 40 x 50 nodes, and its base path's samples).
+    # The rule by hand (exact): the sampled base path point whose u is nearest the
+    # middle of the working depth, a point of path_points_inside; not applied where
+    # lever 7 does not apply (stand-in results, as test_lever_7_by_hand)
+    from gearcontact.tca.mating import solve_mating_point
+    from gearcontact.tca.setting_pivot import depth_centre_pivot
+    from gearcontact.tca.setting_problem import (PIVOT_MARGIN, SynthesisProblem,
+                                                 path_points_inside)
+
+    from . import test_setting_synthesis_typed as typed
+
+    twin, gear = typed.print_twin()
+    prob = SynthesisProblem(twin, gear=gear)
+    free = SynthesisTargets()
+    uv = depth_centre_pivot(_kept(), prob, side="drive", asked=free)
+    pinion, g = prob.flank("drive", np.zeros(3)), prob.gear["drive"]
+    points = path_points_inside(pinion, g, twin, prob.start["drive"], margin=PIVOT_MARGIN)
+    middle = 0.5 * sum(pinion.u_range)
+    best = min(abs(p.u1 - middle) for p in points)
+    hits = [p for p in points if abs(p.u1 - middle) == best]
+    assert uv == (round(float(hits[0].u1), 6), round(float(hits[0].v1), 6))
+    at_m = solve_mating_point(pinion, g, twin.kinematics(), prob.start["drive"])
+    assert abs(uv[0] - at_m.u1) > 0.05
+    assert depth_centre_pivot(_kept(need=_need(travel_mm=2.0)), prob, side="drive",
+                              asked=free) is None
+    assert depth_centre_pivot(_kept(), prob, side="drive", asked=dataclasses.replace(
+        free, path_angle_deg=25.0)) is None

@@ -21,8 +21,9 @@ from ..errors import CheckFailed
 from ..geometry.formate import SIDES
 from ..geometry.settings_top_land import check_settings_top_land
 from ..validation import InputRangeError
-from .setting_pivot import (cuttable_choice, depth_targets, length_targets, pivot_rank,
-                            room_pivot, room_targets, run_pivot, turned_path_targets)
+from .setting_pivot import (cuttable_choice, depth_centre_pivot, depth_fitting_targets,
+                            depth_targets, length_targets, pivot_rank, room_pivot,
+                            room_targets, run_pivot, turned_path_targets)
 from .setting_problem import SynthesisProblem
 from .types import EdgeContact
 
@@ -138,6 +139,21 @@ def pivot_candidates(pair, done, targets, sides, options, bearing_room, *, node,
                 except InputRangeError as exc:
                     failed[s].append(f"{prob.pivot[s]}{said.format(length=math.nan)}: not "
                                      f"synthesized ({exc})")
+            # 7c: that ellipse at the base path's point at the depth's middle
+            uv = depth_centre_pivot(r, prob, side=s, asked=per_side[s])
+            try:
+                centred = None if uv is None else SynthesisProblem(pair, **problem,
+                                                                   pivot_uv={s: uv})
+            except (CheckFailed, EdgeContact, ArithmeticError):    # no contact there
+                centred = None
+            if centred is not None:
+                try:
+                    add(centred, {s: depth_fitting_targets(r, t, face_mm=face)},
+                        ", moved along the base's path to the middle of the working depth, "
+                        "the paint ellipse's target {length:.2f} mm")
+                except InputRangeError as exc:
+                    failed[s].append(f"{centred.pivot[s]}, the middle of the working depth: "
+                                     f"not synthesized ({exc})")
     gear = {s: node.gear_setups[s] for s in SIDES}
 
     def pointed(pick):
