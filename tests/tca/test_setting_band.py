@@ -235,3 +235,19 @@ def test_depth_centre_pivot_on_the_print():
                               asked=free) is None
     assert depth_centre_pivot(_kept(), prob, side="drive", asked=dataclasses.replace(
         free, path_angle_deg=25.0)) is None
+
+
+def test_the_need_is_written_beside_the_pivot_where_the_bearing_reaches_an_edge():
+    # the head comment's line (report.design writes pivot_text), exact words: after the
+    # pivot's line where the paint ellipse reaches an edge, not otherwise, nor without a
+    # need
+    point = SimpleNamespace(path_angle_deg=25.0, pinion_uv=(5.194, 75.088))
+    r = dataclasses.replace(_kept(), point=point)
+    pivot, depth = r.pivot_text().split("\n")
+    assert pivot == "drive: pivot M at M, pinion (u, v) = 5.194, 75.088 mm"
+    assert depth == ("drive: the bearing's depth over a pitch: the contact travels 4.35 mm "
+                     "and the paint ellipse (2a 5.36 mm) spans 2.53 mm, 6.88 mm against the "
+                     "flank's 6.65 mm: no placement holds it; an ellipse of 4.85 mm would "
+                     "fit (first order at M, docs/machine_settings.md sec. 5)")
+    assert dataclasses.replace(r, edges=("",) * 31).pivot_text() == pivot
+    assert dataclasses.replace(r, depth=None).pivot_text() == pivot
