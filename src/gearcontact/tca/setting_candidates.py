@@ -69,6 +69,15 @@ def pivot_candidates(pair, done, targets, sides, options, bearing_room, *, node,
     def best(s):
         return min(cands[s], key=lambda c: pivot_rank(c[0]))
 
+    def moved_to(s, uv):
+        """The problem with the pivot of ``s`` at the flank point ``uv`` (None for no
+        point, or no contact there)."""
+        try:
+            return None if uv is None else SynthesisProblem(pair, **problem,
+                                                            pivot_uv={s: uv})
+        except (CheckFailed, EdgeContact, ArithmeticError):    # no contact there
+            return None
+
     if node.point_contact:      # the pivot stays on the base's path: no centred one
         centred = node
         room_words = "its room along its major axis at M"
@@ -109,12 +118,7 @@ def pivot_candidates(pair, done, targets, sides, options, bearing_room, *, node,
         # its depth travel over half a pitch (lever 5 with its margin)
         for s in sides:
             r, t, prob = best(s)
-            uv = room_pivot(r, t, prob, side=s)
-            try:
-                moved_prob = None if uv is None else SynthesisProblem(pair, **problem,
-                                                                      pivot_uv={s: uv})
-            except (CheckFailed, EdgeContact, ArithmeticError):    # no contact there
-                moved_prob = None
+            moved_prob = moved_to(s, room_pivot(r, t, prob, side=s))
             if moved_prob is not None:
                 add(moved_prob, {s: t}, ", moved along the base's path to where its room "
                     "holds half the paint ellipse, {length:.2f} mm, and its depth travel "
@@ -140,12 +144,7 @@ def pivot_candidates(pair, done, targets, sides, options, bearing_room, *, node,
                     failed[s].append(f"{prob.pivot[s]}{said.format(length=math.nan)}: not "
                                      f"synthesized ({exc})")
             # 7c: that ellipse at the base path's point at the depth's middle
-            uv = depth_centre_pivot(r, prob, side=s, asked=per_side[s])
-            try:
-                centred = None if uv is None else SynthesisProblem(pair, **problem,
-                                                                   pivot_uv={s: uv})
-            except (CheckFailed, EdgeContact, ArithmeticError):    # no contact there
-                centred = None
+            centred = moved_to(s, depth_centre_pivot(r, prob, side=s, asked=per_side[s]))
             if centred is not None:
                 try:
                     add(centred, {s: depth_fitting_targets(r, t, face_mm=face)},
