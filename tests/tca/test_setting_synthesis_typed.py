@@ -307,3 +307,30 @@ def test_the_print_gear_coast_synthesis(print_problem):
     r = synthesize_settings(prob.pair, problem=prob, sides=(side,))[side]
     assert r.met, r.table()
     assert r.vertex_offset_mm < 1e-6
+
+
+@pytest.mark.slow
+def test_the_print_drive_bearings_depth(print_choice):
+    # session 29 (docs/machine_settings.md sec. 5, "The bearing's depth: room against
+    # need", declared before building lever 7): the kept drive bearing's need over a
+    # pitch exceeds the flank's working depth (measured 7.04 against 6.65 mm: the
+    # statement "no placement holds it", a shorter ellipse fitting: verdict "shorter"),
+    # written beside its pivot; N = D + 2h by hand from the result's own numbers
+    # (1e-12); lever 7's candidates (the fitting ellipse, the path turned to 0 deg, the
+    # fitting ellipse at the depth's middle) are scored and none gets more edge phases
+    # than session 28's kept one (11 of 31 in this check): counts, exact; the vertex at
+    # the kept M (1e-6 mm), the coast still 0
+    kept = print_choice["drive"]
+    need = kept.depth
+    assert need.need_mm == pytest.approx(need.travel_mm + 2.0 * np.hypot(
+        need.semi_major_mm * need.du_ds, need.semi_minor_mm * need.du_dt), rel=1e-12)
+    assert need.need_mm > need.room_mm and need.verdict() == "shorter"
+    assert need.shortest_mm <= need.fitting_length_mm() < 2.0 * need.semi_major_mm
+    assert "no placement holds it" in kept.pivot_text()
+    for words in ("shortened to the depth's room over a pitch",
+                  "turned towards lengthwise once more, to 0.0 deg",
+                  "moved along the base's path to the middle of the working depth"):
+        assert words in kept.other_pivot
+    assert kept.met and kept.vertex_offset_mm < 1e-6
+    assert kept.edge_phases <= 11
+    assert print_choice["coast"].edge_phases <= 0

@@ -76,11 +76,13 @@ from .analysis import pattern_on_flank
 from .design_point import DesignPoint
 from .edges import pattern_edges
 from .mesh import mesh_cycle
+from .setting_band import DepthNeed, depth_need
 from .setting_candidates import pivot_candidates
 from .setting_problem import (MeanPointContact, PatternRun, SynthesisProblem,
                               corrected_setup, mean_point_contact, pattern_run, roll_about)
 from .setting_reach import ReachPrediction, chord_step, reach_model, target_misses
-from .synthesis_targets import SynthesisTargets, TargetRows, targets_rows
+from .synthesis_targets import (PATTERN_RATIO_RANGE, SynthesisTargets, TargetRows,
+                                targets_rows)
 from .types import EdgeContact
 
 __all__ = ["PARAMETER_NAMES", "MeanPointContact", "SettingSynthesis", "SynthesisProblem",
@@ -145,6 +147,11 @@ class SettingSynthesis(TargetRows):
         The run of the transmitting tooth pair's path (the full TCA's, pairs -2..2
         pitches) around M's phase whose paint ellipse lies on both flanks
         (:func:`~.setting_problem.pattern_run`); None where it has none.
+    depth : DepthNeed or None
+        The depth the bearing needs over one pitch against the pinion flank's, first
+        order at M (:mod:`.setting_band`; docs/machine_settings.md sec. 5, "The
+        bearing's depth"); None where the contact leaves a flank within two local steps
+        of M.
     """
 
     side: str
@@ -164,6 +171,7 @@ class SettingSynthesis(TargetRows):
     pivot: str = ""
     other_pivot: str = ""
     run: PatternRun | None = None
+    depth: DepthNeed | None = None
 
     @property
     def edge_phases(self) -> int:
@@ -171,10 +179,16 @@ class SettingSynthesis(TargetRows):
         return sum(1 for e in self.edges if e)
 
     def pivot_text(self) -> str:
-        """Where M lies and, if tried, the other pivot's check."""
+        """Where M lies and, if tried, the other pivot's check; where the paint ellipse
+        reaches a flank edge, the bearing's depth against the flank's
+        (:meth:`~.setting_band.DepthNeed.text`: room against need)."""
         text = f"{self.side}: pivot M at {self.pivot}, pinion (u, v) = " + \
             ", ".join(f"{t:.3f}" for t in self.point.pinion_uv) + " mm"
-        return text + (f"; kept against {self.other_pivot}" if self.other_pivot else "")
+        text += f"; kept against {self.other_pivot}" if self.other_pivot else ""
+        if self.edge_phases and self.depth is not None:
+            text += (f"\n{self.side}: the bearing's {self.depth.text()} (first order at M, "
+                     "docs/machine_settings.md sec. 5)")
+        return text
 
     def reach_text(self) -> str:
         """The reach model's prediction beside the achieved residual ("" without one)."""
@@ -382,11 +396,17 @@ def _checked(prob: SynthesisProblem, side, x, targets, length, phases, runs, t0)
     vertex = cyc.contact[len(cyc.contact) // 2]
     run = pattern_run(flank, gear, kin, cyc.path, phi1_rad=start.phi1_rad,
                       pinion_teeth=pair.pinion_teeth)
+    try:
+        depth = depth_need(flank, gear, pair, start,
+                           shortest_mm=PATTERN_RATIO_RANGE[0] * pair.gear_face_width_mm)
+    except (EdgeContact, ArithmeticError, ValueError):     # no local TCA about M
+        depth = None
     return SettingSynthesis(side, prob.setup(side, x), x, local.point,
                             targets_rows(local.point, targets, None, length),
                             float(cyc.te0_pp_arcsec), tuple(edges),
                             float(np.hypot(vertex.u1 - u_m, vertex.v1 - v_m)), runs,
-                            time.perf_counter() - t0, pivot=prob.pivot[side], run=run)
+                            time.perf_counter() - t0, pivot=prob.pivot[side], run=run,
+                            depth=depth)
 
 
 def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = SynthesisTargets(),
@@ -441,7 +461,10 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     free, its pivot moved along the base's path to the ellipse's room plus the contact's
     depth travel over half a pitch (:func:`~.setting_pivot.room_pivot`) and its path at M
     turned towards lengthwise (:func:`~.setting_pivot.turned_path_targets`) join it
-    (sec. 5, "The print's drive bearing" and "a margin on lever 5's room"); the choice:
+    (sec. 5, "The print's drive bearing" and "a margin on lever 5's room"), and where
+    its bearing then needs more of the flank's depth over a pitch than it has, the
+    ellipse that fits and its path turned once more (:func:`~.setting_pivot.depth_targets`,
+    sec. 5, "The bearing's depth"); the choice:
     :func:`~.setting_candidates.pivot_candidates`.
 
     A side without M (:attr:`SynthesisProblem.off_flank`: the base's contact path misses
