@@ -1,6 +1,6 @@
-"""The bearing's depth against the flank's and lever 7 (tca.setting_band, tca.setting_pivot
-``depth_targets``, tca.setting_candidates; docs/machine_settings.md sec. 5, "The bearing's
-depth: room against need", session 29; issue 27).
+"""The bearing's depth against the flank's (tca.setting_band, written by
+tca.setting_synthesis; docs/machine_settings.md sec. 5, "The bearing's depth: room against
+need", session 29; issue 27).
 
 Truths, declared with the rule (before building it):
 - ``ellipse_depth_half_mm`` is the largest ``u`` of the mapped outline ``a cos t du/ds + b
@@ -14,8 +14,6 @@ Truths, declared with the rule (before building it):
   same with ``e_t = n x e_s`` (1e-9 relative: the same 2 x 2 algebra, the subtraction of
   ``u1`` costing ~1e-14 of a rate ~ 1), the ellipse the TCA's at M (==), the travel ``(2 pi
   / z1) |du1/dphi1|`` of tca.setting_room_margin's rate (1e-12), the room the box's depth;
-- lever 7 (``depth_targets``) by hand: where it applies, the ellipse of the fitting length
-  and lever 6's turn once more, in that order (exact); nowhere else (exact).
 """
 
 import dataclasses
@@ -25,11 +23,8 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from gearcontact.tca import setting_candidates as sc
 from gearcontact.tca import setting_synthesis as ss
 from gearcontact.tca.setting_band import DepthNeed, depth_need, ellipse_depth_half_mm
-from gearcontact.tca.setting_pivot import depth_fitting_targets, depth_targets
-from gearcontact.tca.synthesis_targets import SynthesisTargets
 
 
 def test_the_ellipse_depth_half_against_brute_force():
@@ -116,125 +111,6 @@ def _kept(edges=12, angle=25.0, need=None):
                                SimpleNamespace(path_angle_deg=angle), (row,), 1.5,
                                ("pinion root",) * edges + ("",) * (31 - edges), 0.0, 0,
                                0.0, pivot="M", depth=_need() if need is None else need)
-
-
-def test_lever_7_by_hand():
-    face = 31.75
-    free = SynthesisTargets(pattern_length_ratio=5.36 / face)
-    turned = dataclasses.replace(free, path_angle_deg=25.0)      # lever 6's
-    point = SimpleNamespace(point_contact=True)
-    got = depth_targets(_kept(), turned, point, asked=free, face_mm=face)
-    assert [t for t, _ in got] == [
-        dataclasses.replace(turned, pattern_length_ratio=_need().fitting_length_mm() / face),
-        dataclasses.replace(turned, path_angle_deg=0.0)]
-    assert got[1][1] == ", its path at M turned towards lengthwise once more, to 0.0 deg"
-    # a free path (lever 6 tried it already): the ellipse only
-    assert [t for t, _ in depth_targets(_kept(angle=55.0), free, point, asked=free,
-                                        face_mm=face)] == [
-        dataclasses.replace(free, pattern_length_ratio=_need().fitting_length_mm() / face)]
-    # verdict "none": the turn only; a path within 2 deg of lengthwise: not turned
-    none = _need(travel_mm=5.5)
-    assert [t.path_angle_deg for t, _ in depth_targets(
-        _kept(need=none), turned, point, asked=free, face_mm=face)] == [0.0]
-    assert depth_targets(_kept(need=none, angle=1.5), turned, point, asked=free,
-                         face_mm=face) == []
-    # nowhere else: fits, no edge phase, a line-contact base, a typed path angle, no need
-    for r, p, asked in ((_kept(need=_need(travel_mm=2.0)), point, free),
-                        (_kept(edges=0), point, free),
-                        (_kept(), SimpleNamespace(point_contact=False), free),
-                        (_kept(), point, dataclasses.replace(free, path_angle_deg=25.0)),
-                        (dataclasses.replace(_kept(), depth=None), point, free)):
-        assert depth_targets(r, turned, p, asked=asked, face_mm=face) == []
-
-
-def test_lever_7_is_wired_after_lever_6(monkeypatch):
-    # stand-ins (exact): the best one after levers 1-6 (lever 6's path, 25 deg) gets
-    # lever 7's two candidates at its pivot; the kept one is the rank's first
-    face = 31.75
-    node = SimpleNamespace(point_contact=True, pivot={"drive": "node"},
-                           standard={"drive": np.zeros(3)},
-                           gear_setups={"drive": "g", "coast": "g"},
-                           line_room_mm=lambda side, x: 1.0)
-    asked = []
-
-    def synth(pair, *, targets, problem, sides, **options):
-        (s, t), = targets.items()
-        asked.append((round(t.pattern_length_ratio * face, 9), t.path_angle_deg))
-        edges = {None: 15, 25.0: 12, 0.0: 4}.get(t.path_angle_deg, 7)
-        if t.path_angle_deg == 25.0 and t.pattern_length_ratio * face < 5.3:
-            edges = 9
-        return {s: _kept(edges=edges, angle=t.path_angle_deg or 55.0)}
-
-    built = []
-
-    def problem(pair, **kw):
-        built.append(kw)
-        return SimpleNamespace(point_contact=True, pivot={"drive": "centred"})
-
-    monkeypatch.setattr(sc, "room_pivot", lambda *a, **k: None)
-    monkeypatch.setattr(sc, "SynthesisProblem", problem)
-    # 7c: the base path's point at the depth's middle (its rule: the slow test below)
-    monkeypatch.setattr(sc, "depth_centre_pivot", lambda r, prob, *, side, asked: (
-        (5.77, 73.9) if r.point.path_angle_deg == 25.0 else None))
-    pair = SimpleNamespace(gear_face_width_mm=face, name="stand-in")
-    t = SynthesisTargets(pattern_length_ratio=5.36 / face)
-    start = dataclasses.replace(_kept(edges=15, angle=55.0), pivot="node")
-    got = sc.pivot_candidates(pair, {"drive": start}, t, ("drive",), {}, True, node=node,
-                              problem={"gear": None}, synthesize=synth)
-    fit = round(_need().fitting_length_mm(), 9)
-    # lever 7 on lever 6's candidate: the fitting ellipse, the path turned to 0, then
-    # the fitting ellipse (lever 6's path kept) at the pivot moved to the depth's middle
-    assert asked == [(5.36, 25.0), (fit, 25.0), (5.36, 0.0), (fit, 25.0)]
-    assert built == [{"gear": None, "pivot_uv": {"drive": (5.77, 73.9)}}]
-    assert got["drive"].edge_phases == 4
-    assert got["drive"].pivot == ("M, its path at M turned towards lengthwise once more, "
-                                  "to 0.0 deg")
-    assert "M, moved along the base's path to the middle of the working depth, the paint " \
-        f"ellipse's target {fit:.2f} mm: paint ellipse at a flank edge at 9 of 31" in \
-        got["drive"].other_pivot
-
-
-def test_depth_fitting_targets_by_hand():
-    face = 31.75
-    t = SynthesisTargets(pattern_length_ratio=5.36 / face, path_angle_deg=25.0)
-    assert depth_fitting_targets(_kept(), t, face_mm=face) == dataclasses.replace(
-        t, pattern_length_ratio=_need().fitting_length_mm() / face)
-    # not "shorter", or no need: the targets as they are
-    for need in (_need(travel_mm=2.0), _need(travel_mm=5.5)):
-        assert depth_fitting_targets(_kept(need=need), t, face_mm=face) is t
-    assert depth_fitting_targets(dataclasses.replace(_kept(), depth=None), t,
-                                 face_mm=face) is t
-
-
-@pytest.mark.slow
-def test_depth_centre_pivot_on_the_print():
-    # ~15 s (a problem of the print's twin, 40 x 50 nodes, and its base path's samples).
-    # The rule by hand (exact): the sampled base path point whose u is nearest the
-    # middle of the working depth, a point of path_points_inside; not applied where
-    # lever 7 does not apply (stand-in results, as test_lever_7_by_hand)
-    from gearcontact.tca.mating import solve_mating_point
-    from gearcontact.tca.setting_pivot import depth_centre_pivot
-    from gearcontact.tca.setting_problem import (PIVOT_MARGIN, SynthesisProblem,
-                                                 path_points_inside)
-
-    from . import test_setting_synthesis_typed as typed
-
-    twin, gear = typed.print_twin()
-    prob = SynthesisProblem(twin, gear=gear)
-    free = SynthesisTargets()
-    uv = depth_centre_pivot(_kept(), prob, side="drive", asked=free)
-    pinion, g = prob.flank("drive", np.zeros(3)), prob.gear["drive"]
-    points = path_points_inside(pinion, g, twin, prob.start["drive"], margin=PIVOT_MARGIN)
-    middle = 0.5 * sum(pinion.u_range)
-    best = min(abs(p.u1 - middle) for p in points)
-    hits = [p for p in points if abs(p.u1 - middle) == best]
-    assert uv == (round(float(hits[0].u1), 6), round(float(hits[0].v1), 6))
-    at_m = solve_mating_point(pinion, g, twin.kinematics(), prob.start["drive"])
-    assert abs(uv[0] - at_m.u1) > 0.05
-    assert depth_centre_pivot(_kept(need=_need(travel_mm=2.0)), prob, side="drive",
-                              asked=free) is None
-    assert depth_centre_pivot(_kept(), prob, side="drive", asked=dataclasses.replace(
-        free, path_angle_deg=25.0)) is None
 
 
 def test_the_need_is_written_beside_the_pivot_where_the_bearing_reaches_an_edge():

@@ -1,7 +1,7 @@
 """The candidate choice of the local synthesis of the pinion settings
 (:func:`~.setting_synthesis.synthesized_machine_pair`; docs/machine_settings.md sec. 5,
 "The pivot's depth", "The bearing's room", "The candidate choice for a point-contact
-base", "The print's drive bearing" and "The bearing's depth"): which further syntheses of
+base" and "The print's drive bearing"): which further syntheses of
 one side are tried after the one about the mean node, in which order, each on which
 problem with which targets, and which of them is kept (the rules of each candidate:
 :mod:`.setting_pivot`; the kept pair of both sides cuttable:
@@ -15,14 +15,12 @@ synthesis, which imports the choice.
 from __future__ import annotations
 
 import dataclasses
-import math
 
 from ..errors import CheckFailed
 from ..geometry.formate import SIDES
 from ..geometry.settings_top_land import check_settings_top_land
 from ..validation import InputRangeError
-from .setting_pivot import (cuttable_choice, depth_centre_pivot, depth_fitting_targets,
-                            depth_targets, length_targets, pivot_rank, room_pivot,
+from .setting_pivot import (cuttable_choice, length_targets, pivot_rank, room_pivot,
                             room_targets, run_pivot, turned_path_targets)
 from .setting_problem import SynthesisProblem
 from .types import EdgeContact
@@ -134,25 +132,6 @@ def pivot_candidates(pair, done, targets, sides, options, bearing_room, *, node,
             except InputRangeError as exc:
                 failed[s].append(f"{prob.pivot[s]}, its path at M turned to "
                                  f"{t_turn.path_angle_deg:.1f} deg: not synthesized ({exc})")
-        # the best one's bearing fitted to the flank's depth over a pitch (lever 7)
-        for s in sides:
-            r, t, prob = best(s)
-            for t_fit, said in depth_targets(r, t, prob, asked=per_side[s], face_mm=face):
-                try:
-                    add(prob, {s: t_fit}, said)
-                except InputRangeError as exc:
-                    failed[s].append(f"{prob.pivot[s]}{said.format(length=math.nan)}: not "
-                                     f"synthesized ({exc})")
-            # 7c: that ellipse at the base path's point at the depth's middle
-            centred = moved_to(s, depth_centre_pivot(r, prob, side=s, asked=per_side[s]))
-            if centred is not None:
-                try:
-                    add(centred, {s: depth_fitting_targets(r, t, face_mm=face)},
-                        ", moved along the base's path to the middle of the working depth, "
-                        "the paint ellipse's target {length:.2f} mm")
-                except InputRangeError as exc:
-                    failed[s].append(f"{centred.pivot[s]}, the middle of the working depth: "
-                                     f"not synthesized ({exc})")
     gear = {s: node.gear_setups[s] for s in SIDES}
 
     def pointed(pick):

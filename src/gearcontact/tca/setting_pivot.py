@@ -27,10 +27,7 @@ candidate (:func:`room_pivot`): the pivot moved along the base's path to the nea
 point whose room holds that half-length plus the contact's depth travel over half a
 pitch along the ellipse's axis (docs/machine_settings.md sec. 5, lever 5 of "The
 print's drive bearing" and its margin; :mod:`.setting_room_margin`), and one with its
-path at M turned towards lengthwise (:func:`turned_path_targets`, lever 6); where the
-best one's bearing needs more of the flank's depth over a pitch than it has, the ellipse
-that fits and the path turned once more (:func:`depth_targets`, lever 7;
-:mod:`.setting_band`).
+path at M turned towards lengthwise (:func:`turned_path_targets`, lever 6).
 
 The results are :class:`~.setting_synthesis.SettingSynthesis` (read here by their
 ``met``, ``edge_phases``, ``tca_te0_pp_arcsec``, ``edges``, ``pivot``, ``run``); this
@@ -49,9 +46,7 @@ from .mating import solve_mating_point
 from .setting_problem import PIVOT_MARGIN, line_room_mm, path_points_inside
 from .setting_room_margin import axis_depth_rate, depth_rate_per_rad, room_margin_mm
 
-__all__ = ["PATH_TURN_DEG", "better_pivot", "cuttable_choice", "depth_centre_pivot",
-           "depth_fitting_targets", "depth_targets",
-           "length_targets", "pivot_rank", "room_need_mm", "room_pivot", "room_targets",
+__all__ = ["PATH_TURN_DEG", "better_pivot", "cuttable_choice", "length_targets", "pivot_rank", "room_need_mm", "room_pivot", "room_targets",
            "run_pivot", "turned_path_targets"]
 
 #: Shortest paint-ellipse target of the further candidates (the
@@ -272,77 +267,3 @@ def turned_path_targets(result, targets, problem):
 def _turned_deg(angle: float) -> float:
     """``angle`` turned towards lengthwise by :data:`PATH_TURN_DEG`, not past it."""
     return math.copysign(max(abs(angle) - PATH_TURN_DEG, 0.0), angle)
-
-
-def depth_targets(result, targets, problem, *, asked, face_mm: float) -> list:
-    """Lever 7 of the local synthesis (docs/machine_settings.md sec. 5, "The bearing's
-    depth: room against need"): ``[(targets, words), ...]``, the further candidates at
-    ``result``'s pivot (synthesized on ``problem`` to ``targets``) where its bearing's
-    depth need exceeds the flank's (:class:`~.setting_band.DepthNeed`, verdict not
-    ``"fits"``), on a point-contact base whose asked targets ``asked`` leave the path
-    free and which has edge phases; [] otherwise. In order: the ellipse shortened to the
-    longest that fits the depth (:meth:`~.setting_band.DepthNeed.fitting_length_mm`,
-    verdict ``"shorter"``; not below :data:`_RATIO_MIN` of the face ``face_mm``), and,
-    where ``targets`` prescribe a path (lever 6's turn), the path at M turned towards
-    lengthwise by :data:`PATH_TURN_DEG` once more, not past it (not tried within the
-    angle tolerance of lengthwise)."""
-    need = result.depth
-    if not (problem.point_contact and result.edge_phases and asked.path_angle_deg is None
-            and need is not None and need.verdict() != "fits"):
-        return []
-    out = []
-    if need.verdict() == "shorter":
-        short = _shortened(targets, need.fitting_length_mm(), face_mm)
-        if short is not None:
-            out.append((short, ", the paint ellipse's target shortened to the depth's room "
-                        "over a pitch, {length:.2f} mm"))
-    angle = float(result.point.path_angle_deg)
-    if targets.path_angle_deg is not None and abs(angle) > targets.tol_angle_deg:
-        turned = _turned_deg(angle)
-        out.append((dataclasses.replace(targets, path_angle_deg=turned),
-                    f", its path at M turned towards lengthwise once more, to {turned:.1f} "
-                    "deg"))
-    return out
-
-
-def depth_centre_pivot(result, problem, *, side: str, asked):
-    """Lever 7c (docs/machine_settings.md sec. 5, "The bearing's depth", declared after
-    measuring 7a-b): where :func:`depth_targets` applies, the pinion flank point (u, v),
-    mm (rounded to 1e-6 mm, as :func:`run_pivot`), of the base's contact path (its
-    sampled points inside the flank box by :data:`~.setting_problem.PIVOT_MARGIN`,
-    :func:`~.setting_problem.path_points_inside`) whose depth ``u`` is nearest the
-    middle of the flank box's working depth (the nearest in phase of equal ones): the
-    synthesis centres the pitch, and so the bearing's depth band, on its pivot. None
-    where lever 7 does not apply, where no point is sampled, or where that point is
-    M's own depth within :data:`_CENTRE_TOL_MM`."""
-    need = result.depth
-    if not (problem.point_contact and result.edge_phases and asked.path_angle_deg is None
-            and need is not None and need.verdict() != "fits"):
-        return None
-    pinion, gear = problem.flank(side, np.zeros(3)), problem.gear[side]
-    at_m = solve_mating_point(pinion, gear, problem.pair.kinematics(), problem.start[side])
-    (u0, u1) = pinion.u_range
-    middle = 0.5 * (u0 + u1)
-    points = path_points_inside(pinion, gear, problem.pair, problem.start[side],
-                                margin=PIVOT_MARGIN)
-    if not points:
-        return None
-    p = min(points, key=lambda p: (abs(p.u1 - middle), abs(p.phi1_rad - at_m.phi1_rad)))
-    if not abs(p.u1 - at_m.u1) > _CENTRE_TOL_MM:
-        return None
-    return (round(float(p.u1), 6), round(float(p.v1), 6))
-
-
-#: A depth-centred pivot this close to M's depth, mm, moves no pivot (lever 7c).
-_CENTRE_TOL_MM = 0.05
-
-
-def depth_fitting_targets(result, targets, *, face_mm: float):
-    """``targets`` with the ellipse ``result``'s depth need fits
-    (:meth:`~.setting_band.DepthNeed.fitting_length_mm`, verdict ``"shorter"``), or
-    ``targets`` themselves where it is not ``"shorter"`` or the length is out of the
-    range (:func:`_shortened`)."""
-    need = result.depth
-    if need is None or need.verdict() != "shorter":
-        return targets
-    return _shortened(targets, need.fitting_length_mm(), face_mm) or targets

@@ -461,10 +461,7 @@ def synthesized_machine_pair(pair, *, targets: SynthesisTargets | dict = Synthes
     free, its pivot moved along the base's path to the ellipse's room plus the contact's
     depth travel over half a pitch (:func:`~.setting_pivot.room_pivot`) and its path at M
     turned towards lengthwise (:func:`~.setting_pivot.turned_path_targets`) join it
-    (sec. 5, "The print's drive bearing" and "a margin on lever 5's room"), and where
-    its bearing then needs more of the flank's depth over a pitch than it has, the
-    ellipse that fits and its path turned once more (:func:`~.setting_pivot.depth_targets`,
-    sec. 5, "The bearing's depth"); the choice:
+    (sec. 5, "The print's drive bearing" and "a margin on lever 5's room"); the choice:
     :func:`~.setting_candidates.pivot_candidates`.
 
     A side without M (:attr:`SynthesisProblem.off_flank`: the base's contact path misses
