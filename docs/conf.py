@@ -63,7 +63,7 @@ napoleon_preprocess_types = False
 
 # --- Markdown pages
 myst_enable_extensions = ["dollarmath", "amsmath", "deflist"]
-myst_heading_anchors = 3
+myst_heading_anchors = 4
 
 # A numpydoc type is prose ("ndarray, shape (n, 3)"); the Python domain links each of
 # its words and, where a word such as ``n``, ``shape`` or ``ContactEllipse`` names
