@@ -22,6 +22,7 @@ from ..deprecation import moved_names
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
 from .edge_contact import contact_state, inward_slope, pushes_forward, solve_edge_contact
+from .edge_screen import edge_first, leads
 from .edges import solver_boundary
 from .mating import solve_mating_point
 from .types import (ARCSEC_PER_RAD, EDGE_TE_LIMIT_ARCSEC, ContactGuess, EdgeContact,
@@ -56,7 +57,7 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
               *, start: ContactGuess, start_fixed: str = "phi1", tol_mm: float = 1e-10,
               max_iter: int = 40, max_step_rad: float | None = None,
               edges: bool = True, edge_te_limit_arcsec: float = EDGE_TE_LIMIT_ARCSEC,
-              progress: bool = False) -> TcaPath:
+              edge_check: bool = True, progress: bool = False) -> TcaPath:
     """TCA of one tooth pair over the mesh phases ``phi1_rad`` by continuation.
 
     The reference (mean) mating point is solved first from ``start`` with
@@ -90,6 +91,13 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
         parameter box early and end the path there). Default: no substeps.
     edges : bool
         Continue through edge-to-surface contact (default) or stop at the boundary.
+    edge_check : bool
+        With ``edges``: at every phase whose surface mating point lies inside both
+        flanks, ask whether an edge touches before it
+        (:func:`~gearcontact.tca.edge_screen.edge_first`) and keep the edge contact if
+        so; the surface point is then followed on beside the edge until it touches
+        first again or leaves a flank (default). False: edges only where the surface
+        point has left a flank.
     edge_te_limit_arcsec : float
         An edge contact whose TE0 lies more than this behind the path's first touch so
         far (its TE0 extreme) ends the path in that direction: it can carry only if the
@@ -122,8 +130,16 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
             return a if b is None else b
         return a if (a.phi2_rad >= b.phi2_rad) == forward else b
 
+    check = edges and edge_check
+
+    def checked(surface: MatingPoint) -> MatingPoint:
+        return edge_first(pinion, gear, kin, surface, forward=forward, tol_mm=tol_mm)
+
     for direction, indices in ((+1, range(i0, phis.size)), (-1, range(i0 - 1, -1, -1))):
         prev, prev2 = ref, None
+        # the surface point (and its predecessor) while an edge that touched before it
+        # carries: it lay inside both flanks then and is followed on
+        shadow: tuple | None = None
         stopped: str | None = None
         best = 0.0                  # the path's first touch so far (TE0 extreme), arcsec
         for i in indices:
@@ -145,7 +161,9 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
                             prev2 = prev
                         prev = step
                         gap = phis[i] - prev.phi1_rad
-                    mp = step
+                    mp = checked(step) if check else step
+                    if mp is not step:
+                        shadow = (prev, prev2)
                 except (EdgeContact, TcaConvergenceError) as exc:
                     if isinstance(exc, EdgeContact):
                         where = exc.where
@@ -176,9 +194,25 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
                 edge = solve_edge_contact(pinion, gear, kin, phis[i], guess=prev.as_guess(),
                                           forward=forward, tol_mm=tol_mm)
                 surface = None
+                if shadow is not None:
+                    s_prev, s_prev2 = shadow
+                    shadow = None
+                    try:
+                        surface = solve_mating_point(
+                            pinion, gear, kin, _predict(s_prev, s_prev2, phis[i], kin.ratio),
+                            tol_mm=tol_mm, max_iter=max_iter)
+                    except (EdgeContact, TcaConvergenceError):
+                        pass    # it has left a flank: the edge mode below
+                    if surface is not None:
+                        mp = checked(surface)
+                        if edge is not None and leads(edge, mp, forward=forward):
+                            mp = edge
+                        if mp is not surface:
+                            shadow = (surface, s_prev)
                 # the flank behind the edge dips towards the other flank: the surface
                 # contact is back inside the flanks
-                if edge is None or inward_slope(pinion, gear, kin, edge) < 0.0:
+                if surface is None and (edge is None
+                                        or inward_slope(pinion, gear, kin, edge) < 0.0):
                     guess = replace(prev.as_guess(), phi1_rad=phis[i], phi2_rad=prev.phi2_rad
                                     + (phis[i] - prev.phi1_rad) / kin.ratio)
                     try:
@@ -186,7 +220,13 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
                                                      max_iter=max_iter)
                     except (EdgeContact, TcaConvergenceError):
                         pass
-                mp = first_touch(surface, edge)
+                    mp = first_touch(surface, edge)
+                    if check and mp is surface and surface is not None:
+                        mp = checked(surface)
+                        if mp is not surface:
+                            shadow = (surface, None)
+                elif surface is None:
+                    mp = edge
             if mp is None:
                 stopped = where
                 results[i] = MatingPoint.edge_phase(phis[i], stopped)
