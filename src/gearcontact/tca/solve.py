@@ -243,4 +243,45 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
                 prev2, prev = None, mp
             results[i] = replace(mp, te0_arcsec=te)
     bar.close()
+    if check:
+        _surface_returns(pinion, gear, kin, results, ref, checked=checked, forward=forward,
+                         tol_mm=tol_mm, max_iter=max_iter)
     return TcaPath(tuple(results), ref.phi1_rad, ref.phi2_rad, kin.ratio)
+
+
+def _is_surface(mp: MatingPoint) -> bool:
+    return not mp.edge and not mp.edge_contact
+
+
+def _surface_returns(pinion: Surface, gear: Surface, kin: MeshKinematics, results: list,
+                     ref: MatingPoint, *, checked, forward: bool, tol_mm: float,
+                     max_iter: int) -> None:
+    """Continue each surface stretch of a path into the edge (or contactless) phases next
+    to it, from its own end, against the sweep's direction too: a surface point inside
+    both flanks (checked for an edge touching before it, ``checked``) that touches
+    before the phase's edge contact replaces it, phase by phase, until one does not
+    (docs/machine_settings.md sec. 5, "The edge check while the surface contact is
+    inside"). ``results`` is edited in place."""
+    n = len(results)
+    for step in (+1, -1):
+        for i in range(n) if step > 0 else range(n - 1, -1, -1):
+            j, back = i + step, i - step
+            if not (0 <= j < n) or not _is_surface(results[i]) or _is_surface(results[j]):
+                continue
+            prev = results[i]
+            prev2 = results[back] if 0 <= back < n and _is_surface(results[back]) else None
+            while 0 <= j < n and not _is_surface(results[j]):
+                try:
+                    surface = solve_mating_point(
+                        pinion, gear, kin, _predict(prev, prev2, results[j].phi1_rad,
+                                                    kin.ratio), tol_mm=tol_mm,
+                        max_iter=max_iter)
+                except (EdgeContact, TcaConvergenceError):
+                    break
+                mp = checked(surface)
+                if not results[j].edge and not leads(mp, results[j], forward=forward):
+                    break
+                te = ((mp.phi2_rad - ref.phi2_rad) - (mp.phi1_rad - ref.phi1_rad) / kin.ratio)
+                results[j] = replace(mp, te0_arcsec=te * ARCSEC_PER_RAD)
+                prev2, prev = prev, surface
+                j += step
