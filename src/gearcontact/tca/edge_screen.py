@@ -193,12 +193,8 @@ def edge_first(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPo
 
     Parameters
     ----------
-    pinion, gear : Surface
-        The two flanks.
-    kin : MeshKinematics
-        Kinematics with assembly errors.
-    mp : MatingPoint
-        A surface mating point inside both flanks.
+    pinion, gear, kin, mp
+        As :func:`edge_gaps` (``mp`` a surface mating point inside both flanks).
     forward : bool
         The gear is pushed towards +phi2 (the first touch is the largest turn).
     tol_mm : float
