@@ -8,24 +8,25 @@ touches first (docs/machine_settings.md sec. 5, "The edge check while the surfac
 contact is inside (session 29)"):
 
 1. **The screen** (:func:`edge_gaps`): with both members posed at the surface contact
-   (pinion phase ``phi1``, gear turn ``phi2*``), the separation of each edge from the
-   other flank along the common normal ``n`` of the contact,
-   ``d(s) = (X_1 - X_2) . n`` (``X_1`` on the pinion, ``X_2`` on the gear, on one line
-   along ``n``; ``n`` out of the gear tooth), is sampled at :data:`SCREEN_SAMPLES`
-   even points of the edge (the other flank's continuation beyond its box included).
-   An edge point with ``d < 0`` lies in the other tooth's material: the gear must turn
-   further to clear it, so the edge touches first. Between samples ``h`` apart,
-   ``d >= min(d_k, d_k+1) - M h^2 / 8`` for ``|d''| <= M``; ``M`` is taken as
-   :data:`CURVATURE_FACTOR` times the largest sampled second difference over ``h^2``,
-   so the edge's lower bound is ``min d - CURVATURE_FACTOR max|D2 d| / 8``. An edge
-   whose bound is positive cannot touch first and is ruled out; an edge with a sample
-   whose line misses the other flank (Newton not converged) is not.
+   (pinion phase ``phi1``, gear turn ``phi2*``), each edge is sampled at
+   :data:`SCREEN_SAMPLES` even points, and for each the extra gear turn ``delta`` that
+   brings it onto the other flank (its continuation beyond the box included) is solved
+   (:func:`edge_turns`). Its turn gap ``g`` (``-delta`` if the gear is pushed towards
+   +phi2, else ``delta``) is negative where the point touches before the surface
+   contact. Between samples ``h`` apart, ``g >= min(g_k, g_k+1) - M h^2 / 8`` for
+   ``|g''| <= M``; ``M h^2`` is taken as :data:`CURVATURE_FACTOR` times the larger
+   |second difference| at the interval's ends. Only points that touch the other flank
+   inside its box count: an interval whose touches' box margin, bounded the same way
+   from above, stays below 0 holds none (+inf). A sample whose Newton solve fails does
+   not touch (the rule of :mod:`.edge_contact`'s search); an interval with one such end
+   is bounded from its solved end ``a`` and that end's other neighbour ``a'`` (the
+   slope's error within ``M h / 2``): ``g >= min(g_a, 2 g_a - g_a' - M h^2)``, the
+   margin likewise from above.
+   An edge whose smallest interval bound is positive cannot touch first and is ruled
+   out.
 2. **The exact solve** (:func:`~.edge_contact.solve_edge_contact`) over the edges the
    screen did not rule out: the edge contact replaces the surface contact only if it
    touches first by more than :data:`EDGE_LEAD_RAD` of gear turn.
-
-The screen needs the other flank met once by each line along ``n`` near the edge (its
-normals within 90 degrees of ``n``: any tooth flank in mesh).
 """
 
 from __future__ import annotations
@@ -37,25 +38,23 @@ import numpy as np
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
 from .edge_contact import FlankEdge, edge_parameters, edge_span, flank_edges, solve_edge_contact
-from .stencil import _intersect_many, evaluate_many
+from .stencil import evaluate_many
 from .types import MatingPoint
 
-__all__ = ["SCREEN_SAMPLES", "CURVATURE_FACTOR", "EDGE_LEAD_RAD", "EdgeGap", "interval_bounds_mm",
-           "edge_gaps", "edge_first", "leads"]
+__all__ = ["SCREEN_SAMPLES", "CURVATURE_FACTOR", "EDGE_LEAD_RAD", "EdgeGap", "interval_bounds",
+           "edge_turns", "edge_gaps", "edge_first", "leads"]
 
 #: Even samples of each edge in the screen (both ends included).
 SCREEN_SAMPLES = 17
 #: The bound on ``|d''|`` of an edge: this factor times its largest sampled second
 #: difference over ``h^2`` (declared, docs sec. 5; tested against dense sampling).
 CURVATURE_FACTOR = 4.0
-#: The reach of an interval into the other flank's box is widened by this factor times
-#: its samples' larger ``|d| tan(theta)`` (the motion's circle against its tangent, and
-#: the flank's curvature between the two hits; declared, docs sec. 5).
-SHIFT_FACTOR = 1.5
+#: Halvings of an interval the screen cannot rule out (its ``M`` kept).
+REFINE_LEVELS = 4
 #: An edge contact replaces the surface contact only when it touches first by more than
 #: this gear turn, rad (~2e-4 arcsec; the point solves' tolerance 1e-10 mm is ~1e-12 rad).
 EDGE_LEAD_RAD = 1e-9
-#: Tolerance of the line intersections of the screen, mm.
+#: Tolerance of the screen's point solves, mm.
 SCREEN_TOL_MM = 1e-9
 
 
@@ -68,62 +67,165 @@ class EdgeGap:
     edge : FlankEdge
     s_mm : ndarray (N,)
         Samples of the edge's free parameter, mm.
-    gap_mm : ndarray (N,)
-        Separation ``d`` from the other flank along the contact normal, mm (NaN: the
-        line missed the other flank).
+    gap_rad : ndarray (N,)
+        Turn gap ``g`` of each sample, rad (NaN: not solved).
     margin_mm : ndarray (N,)
-        Signed distance of each line's hit inside the other flank's box, mm.
-    lower_mm : float
-        Lower bound of ``d`` over the edge's points that can touch the other flank
-        inside its box, mm (+inf: none can; -inf: a sample is NaN).
+        Signed distance of each sample's touch inside the other flank's box, mm.
+    lower_rad : float
+        Lower bound of ``g`` over the edge's points that touch the other flank inside
+        its box, rad (+inf: none can; -inf: a sample is NaN).
     """
 
     edge: FlankEdge
     s_mm: np.ndarray
-    gap_mm: np.ndarray
+    gap_rad: np.ndarray
     margin_mm: np.ndarray
-    lower_mm: float
+    lower_rad: float
 
     @property
     def ruled_out(self) -> bool:
         """The edge cannot touch before the surface contact (its bound is positive)."""
-        return bool(self.lower_mm > 0.0)
+        return bool(self.lower_rad > 0.0)
 
 
 def _local_d2(d: np.ndarray) -> np.ndarray:
-    """Per interval ``[s_k, s_k+1]`` the larger |second difference| at its two ends
-    (an end of the edge takes its neighbour's)."""
+    """Per interval ``[s_k, s_k+1]`` the larger |second difference| at its two ends (an
+    end of the edge, or one whose difference takes a sample not solved, takes the other
+    end's; NaN if neither has one)."""
     d2 = np.abs(np.diff(d, 2))
-    at = np.concatenate([d2[:1], d2, d2[-1:]])      # at every sample
-    return np.maximum(at[:-1], at[1:])
+    at = np.concatenate([[np.nan], d2, [np.nan]])      # at every sample
+    return np.fmax(at[:-1], at[1:])
 
 
-def interval_bounds_mm(gap_mm: np.ndarray, margin_mm: np.ndarray,
-                       tan_mm: np.ndarray) -> np.ndarray:
-    """Per interval of an evenly sampled edge: a lower bound of the separation ``d`` over
-    the interval's points that can touch the other flank inside its box, +inf if none
-    can, -inf if a sample is NaN (module docstring).
+def interval_bounds(gap: np.ndarray, margin_mm: np.ndarray, *, curvature=None,
+                    margin_curvature=None) -> np.ndarray:
+    """Per interval of an evenly sampled edge: a lower bound of the turn gap ``g`` over
+    the interval's points that touch the other flank inside its box, +inf if none can,
+    -inf if unknown (module docstring).
 
-    ``gap_mm``: ``d`` at the samples; ``margin_mm``: the signed distance of each
-    sample's line hit inside the other flank's box (parameters, mm); ``tan_mm``:
-    ``|d| tan(theta)`` per sample, how far the point's touch along its relative motion
-    lies from its line hit (``theta`` between ``n`` and that motion).
+    ``gap``: ``g`` at the samples (rad); ``margin_mm``: the signed distance of each
+    sample's touch inside the other flank's box (parameters, mm); NaN: a sample not
+    solved, which touches nothing (as in :mod:`.edge_contact`'s search).
+    ``curvature``, ``margin_curvature``: per interval ``M h^2`` of ``g`` and of the margin
+    (default :data:`CURVATURE_FACTOR` times the larger |second difference| at the
+    interval's ends).
     """
-    d, m = np.asarray(gap_mm, float), np.asarray(margin_mm, float)
-    shift = np.asarray(tan_mm, float)
-    lower = np.minimum(d[:-1], d[1:]) - CURVATURE_FACTOR * _local_d2(d) / 8.0
-    reach = (np.maximum(m[:-1], m[1:]) + CURVATURE_FACTOR * _local_d2(m) / 8.0
-             + SHIFT_FACTOR * np.maximum(shift[:-1], shift[1:]))
+    d, m = np.asarray(gap, float), np.asarray(margin_mm, float)
+    cd = CURVATURE_FACTOR * _local_d2(d) if curvature is None else curvature
+    cm = CURVATURE_FACTOR * _local_d2(m) if margin_curvature is None else margin_curvature
+    lower = np.minimum(d[:-1], d[1:]) - cd / 8.0
+    reach = np.fmax(m[:-1], m[1:]) + cm / 8.0
     out = np.where(reach < 0.0, np.inf, lower)
-    bad = ~np.isfinite(d) | ~np.isfinite(m)
-    # a NaN sample leaves its intervals and those whose curvature it enters unknown
-    near = np.convolve(bad.astype(float), np.ones(4), mode="full")[2:-1] > 0.0 \
-        if d.size > 3 else np.full(d.size - 1, bad.any())
-    return np.where(near[:d.size - 1], -np.inf, out)
+    solved = np.isfinite(d)
+    both = solved[:-1] & solved[1:]
+    # both ends solved: the bound (unknown if no second difference is); none: no touch
+    out = np.where(both, np.where(np.isnan(out), -np.inf, out), np.inf)
+    # one end solved: the solved stretch from it, extrapolated with the difference to its
+    # other neighbour (the slope within M h / 2): g >= min(g_a, 2 g_a - g_a' - M h^2)
+    for k in np.flatnonzero(solved[:-1] ^ solved[1:]):
+        a, a2 = (k, k - 1) if solved[k] else (k + 1, k + 2)
+        if not (0 <= a2 < d.size and solved[a2]):
+            out[k] = -np.inf
+            continue
+        j = a2                   # the second difference nearest the solved end
+        c_g = CURVATURE_FACTOR * abs(d[j - 1] - 2 * d[j] + d[j + 1]) \
+            if 0 < j < d.size - 1 and np.isfinite(d[j - 1:j + 2]).all() else np.nan
+        c_m = CURVATURE_FACTOR * abs(m[j - 1] - 2 * m[j] + m[j + 1]) \
+            if 0 < j < d.size - 1 and np.isfinite(m[j - 1:j + 2]).all() else np.nan
+        if not (np.isfinite(c_g) and np.isfinite(c_m)):
+            out[k] = -np.inf
+        elif max(m[a], 2 * m[a] - m[a2] + c_m) < 0.0:
+            out[k] = np.inf
+        else:
+            out[k] = min(d[a], 2 * d[a] - d[a2] - c_g)
+    return out
+
+
+def _refined_bound(turns, s: np.ndarray, gap: np.ndarray, margin: np.ndarray) -> float:
+    """The edge's lower bound with every interval whose bound is finite and not positive
+    halved :data:`REFINE_LEVELS` times, its ``M`` (of ``g`` and of the margin) kept:
+    each half's ``M h^2`` a quarter of its parent's (``turns(s)``: ``(g, margin)``)."""
+    cd, cm = CURVATURE_FACTOR * _local_d2(gap), CURVATURE_FACTOR * _local_d2(margin)
+    bounds = interval_bounds(gap, margin, curvature=cd, margin_curvature=cm)
+    done = [bounds[~(np.isfinite(bounds) & (bounds <= 0.0))]]
+    k = np.flatnonzero(np.isfinite(bounds) & (bounds <= 0.0))
+    a, b = s[k], s[k + 1]
+    ga, gb, ma, mb, cd, cm = gap[k], gap[k + 1], margin[k], margin[k + 1], cd[k], cm[k]
+    for _ in range(REFINE_LEVELS):
+        if a.size == 0:
+            break
+        mid = 0.5 * (a + b)
+        gm, mm = turns(mid)
+        cd, cm = np.repeat(cd / 4.0, 2), np.repeat(cm / 4.0, 2)
+        a, b = np.ravel(np.column_stack([a, mid])), np.ravel(np.column_stack([mid, b]))
+        ga, gb = np.ravel(np.column_stack([ga, gm])), np.ravel(np.column_stack([gm, gb]))
+        ma, mb = np.ravel(np.column_stack([ma, mm])), np.ravel(np.column_stack([mm, mb]))
+        pairs = [interval_bounds(np.array([g0, g1]), np.array([m0, m1]),
+                                 curvature=np.array([c0]), margin_curvature=np.array([c1]))[0]
+                 for g0, g1, m0, m1, c0, c1 in zip(ga, gb, ma, mb, cd, cm)]
+        bounds = np.array(pairs)
+        keep = np.isfinite(bounds) & (bounds <= 0.0)
+        done.append(bounds[~keep])
+        a, b, ga, gb, ma, mb, cd, cm = (x[keep] for x in (a, b, ga, gb, ma, mb, cd, cm))
+        bounds = bounds[keep]
+    done.append(bounds if a.size else np.array([]))
+    return float(np.concatenate(done).min(initial=np.inf))
+
+
+def _rot_z(p: np.ndarray, angle: np.ndarray) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    return np.column_stack([c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1], p[:, 2]])
+
+
+def edge_turns(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint,
+               edge: FlankEdge, s_mm: np.ndarray, *, forward: bool
+               ) -> tuple[np.ndarray, np.ndarray]:
+    """The turn gap ``g`` (rad) and the touch's box margin (mm) of the points ``s_mm`` of
+    one edge, both members posed at the surface contact ``mp`` (module docstring).
+
+    For each edge point, the extra gear turn ``delta`` that brings it onto the other
+    flank (its continuation beyond the box included) is solved by Newton's method on
+    ``S(a, b) = P(delta)`` (the other posed flank; the edge point turned with the gear,
+    about the gear axis), vectorized over the points, started from the tangent-plane
+    prediction at the contact; ``g = -delta`` (``forward``) or ``delta``: negative where
+    the point touches before the surface contact. NaN where Newton does not converge
+    within 20 steps to 1e-9 mm.
+    """
+    flank = {"pinion": pinion, "gear": gear}
+    poses = {"pinion": kin.pinion_pose(mp.phi1_rad), "gear": kin.gear_pose(mp.phi2_rad)}
+    own, other = edge.member, "gear" if edge.member == "pinion" else "pinion"
+    uv = np.array([edge_parameters(flank[own], edge.name, float(t)) for t in s_mm])
+    rot, c = poses[own]
+    q = evaluate_many(flank[own], uv[:, 0], uv[:, 1])[0] @ rot.T + c - poses["gear"][1]
+    # a pinion point turns with the gear's inverse in the gear's frame, a gear point
+    # with the gear (about the gear axis, z, through the gear pose's offset)
+    turn = -kin.gear_axis[2] if own == "pinion" else kin.gear_axis[2]
+    rot_o, c_o = poses[other]
+    c_o = c_o - poses["gear"][1]
+    (u0, u1), (v0, v1) = flank[other].u_range, flank[other].v_range
+    ab = np.tile(np.asarray((mp.u2, mp.v2) if other == "gear" else (mp.u1, mp.v1), float),
+                 (len(q), 1))
+    delta = np.zeros(len(q))
+    done = np.zeros(len(q), dtype=bool)
+    for _ in range(20):
+        r, r_u, r_v = evaluate_many(flank[other], ab[:, 0], ab[:, 1])
+        p = _rot_z(q, turn * delta)
+        res = r @ rot_o.T + c_o - p
+        done = np.abs(res).max(axis=1) < SCREEN_TOL_MM
+        if done.all():
+            break
+        dp = turn * np.column_stack([-p[:, 1], p[:, 0], np.zeros(len(p))])
+        jac = np.stack([r_u @ rot_o.T, r_v @ rot_o.T, -dp], axis=2)
+        step = np.linalg.solve(jac, -res[..., None])[..., 0]
+        step = np.where(np.isfinite(step), step, 0.0)
+        ab, delta = ab + step[:, :2], delta + step[:, 2]
+    delta = np.where(done, delta, np.nan)
+    margin = np.minimum.reduce([ab[:, 0] - u0, u1 - ab[:, 0], ab[:, 1] - v0, v1 - ab[:, 1]])
+    return (-delta if forward else delta), np.where(np.isfinite(delta), margin, np.nan)
 
 
 def edge_gaps(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint, *,
-              edges=None, samples: int = SCREEN_SAMPLES) -> list[EdgeGap]:
+              forward: bool, edges=None, samples: int = SCREEN_SAMPLES) -> list[EdgeGap]:
     """The screen of every candidate edge at the surface contact ``mp``.
 
     Parameters
@@ -134,6 +236,8 @@ def edge_gaps(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoi
         Kinematics with assembly errors.
     mp : MatingPoint
         A surface mating point (both members posed there).
+    forward : bool
+        The gear is pushed towards +phi2 (the first touch is the largest turn).
     edges : sequence of FlankEdge, optional
         Default :func:`~.edge_contact.flank_edges`.
     samples : int
@@ -147,42 +251,14 @@ def edge_gaps(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoi
         raise ValueError(f"samples = {samples!r} must be >= 4")
     if edges is None:
         edges = flank_edges(pinion, gear)
-    poses = {"pinion": kin.pinion_pose(mp.phi1_rad), "gear": kin.gear_pose(mp.phi2_rad)}
-    uv_at = {"pinion": (mp.u1, mp.v1), "gear": (mp.u2, mp.v2)}
     flank = {"pinion": pinion, "gear": gear}
-    n = np.asarray(mp.normal, float)
-    x0 = np.asarray(mp.point_mm, float)
-    tangents = {}
-    for member in flank:        # the tangent-plane prediction of each line's start
-        rot = poses[member][0]
-        _, r_u, r_v = evaluate_many(flank[member], np.array([uv_at[member][0]]),
-                                    np.array([uv_at[member][1]]))
-        tangents[member] = np.column_stack([rot @ r_u[0], rot @ r_v[0], -n])
     out = []
     for edge in edges:
-        own, other = edge.member, "gear" if edge.member == "pinion" else "pinion"
-        lo, hi = edge_span(flank[own], edge.name)
-        s = np.linspace(lo, hi, int(samples))
-        uv = np.array([edge_parameters(flank[own], edge.name, float(t)) for t in s])
-        r = evaluate_many(flank[own], uv[:, 0], uv[:, 1])[0]
-        rot, c = poses[own]
-        q = r @ rot.T + c
-        step = np.linalg.solve(tangents[other], (q - x0).T).T
-        (u0, u1), (v0, v1) = flank[other].u_range, flank[other].v_range
-        uv0 = np.clip(np.asarray(uv_at[other], float) + step[:, :2], (u0, v0), (u1, v1))
-        hit = np.empty_like(uv0)
-        lam, _ = _intersect_many(flank[other], poses[other], q, n, uv0, clamp=False,
-                                 tol_mm=SCREEN_TOL_MM, uv_out=hit)
-        # the line q + lam n meets the other flank: d = (X_1 - X_2) . n
-        gap = -lam if own == "pinion" else lam
-        margin = np.minimum.reduce([hit[:, 0] - u0, u1 - hit[:, 0], hit[:, 1] - v0,
-                                    v1 - hit[:, 1]])
-        # the relative motion of the edge point: its circle about the gear axis
-        motion = np.cross(kin.gear_axis, q - poses["gear"][1])
-        cos = np.abs(motion @ n) / np.linalg.norm(motion, axis=1)
-        shift = np.abs(gap) * np.sqrt(np.maximum(0.0, 1.0 - cos ** 2)) / cos
-        bounds = interval_bounds_mm(gap, margin, shift)
-        out.append(EdgeGap(edge, s, gap, margin, float(bounds.min())))
+        s = np.linspace(*edge_span(flank[edge.member], edge.name), int(samples))
+        gap, margin = edge_turns(pinion, gear, kin, mp, edge, s, forward=forward)
+        lower = _refined_bound(lambda t, e=edge: edge_turns(pinion, gear, kin, mp, e, t,
+                                                            forward=forward), s, gap, margin)
+        out.append(EdgeGap(edge, s, gap, margin, lower))
     return out
 
 
@@ -205,7 +281,8 @@ def edge_first(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPo
     MatingPoint
         ``mp`` (the same object) if no edge touches first, else the edge contact.
     """
-    open_edges = [g.edge for g in edge_gaps(pinion, gear, kin, mp) if not g.ruled_out]
+    open_edges = [g.edge for g in edge_gaps(pinion, gear, kin, mp, forward=forward)
+                  if not g.ruled_out]
     if not open_edges:
         return mp
     edge = solve_edge_contact(pinion, gear, kin, mp.phi1_rad, guess=mp.as_guess(),
