@@ -141,35 +141,41 @@ def interval_bounds(gap: np.ndarray, margin_mm: np.ndarray, *, curvature=None,
     return out
 
 
-def _refined_bound(turns, s: np.ndarray, gap: np.ndarray, margin: np.ndarray) -> float:
-    """The edge's lower bound with every interval whose bound is finite and not positive
-    halved :data:`REFINE_LEVELS` times, its ``M`` (of ``g`` and of the margin) kept:
-    each half's ``M h^2`` a quarter of its parent's (``turns(s)``: ``(g, margin)``)."""
-    cd, cm = CURVATURE_FACTOR * _local_d2(gap), CURVATURE_FACTOR * _local_d2(margin)
-    bounds = interval_bounds(gap, margin, curvature=cd, margin_curvature=cm)
-    done = [bounds[~(np.isfinite(bounds) & (bounds <= 0.0))]]
-    k = np.flatnonzero(np.isfinite(bounds) & (bounds <= 0.0))
-    a, b = s[k], s[k + 1]
-    ga, gb, ma, mb, cd, cm = gap[k], gap[k + 1], margin[k], margin[k + 1], cd[k], cm[k]
+def _refined_bounds(turns, spans: list, gaps: list, margins: list) -> list:
+    """Every edge's lower bound with each interval whose bound is finite and not
+    positive halved :data:`REFINE_LEVELS` times, its ``M`` (of ``g`` and of the margin)
+    kept: each half's ``M h^2`` a quarter of its parent's. ``turns(items)``: the
+    ``(g, margin)`` of ``(edge index, s)`` items (all edges' midpoints of a level at
+    once)."""
+    lowest = []
+    work = []       # per open interval: edge, a, b, g_a, g_b, m_a, m_b, M_g h^2, M_m h^2
+    for e, (s, gap, margin) in enumerate(zip(spans, gaps, margins)):
+        cd, cm = CURVATURE_FACTOR * _local_d2(gap), CURVATURE_FACTOR * _local_d2(margin)
+        bounds = interval_bounds(gap, margin, curvature=cd, margin_curvature=cm)
+        open_ = np.isfinite(bounds) & (bounds <= 0.0)
+        lowest.append(float(bounds[~open_].min(initial=np.inf)))
+        work += [(e, s[k], s[k + 1], gap[k], gap[k + 1], margin[k], margin[k + 1], cd[k],
+                  cm[k], bounds[k]) for k in np.flatnonzero(open_)]
     for _ in range(REFINE_LEVELS):
-        if a.size == 0:
+        if not work:
             break
-        mid = 0.5 * (a + b)
-        gm, mm = turns(mid)
-        cd, cm = np.repeat(cd / 4.0, 2), np.repeat(cm / 4.0, 2)
-        a, b = np.ravel(np.column_stack([a, mid])), np.ravel(np.column_stack([mid, b]))
-        ga, gb = np.ravel(np.column_stack([ga, gm])), np.ravel(np.column_stack([gm, gb]))
-        ma, mb = np.ravel(np.column_stack([ma, mm])), np.ravel(np.column_stack([mm, mb]))
-        pairs = [interval_bounds(np.array([g0, g1]), np.array([m0, m1]),
-                                 curvature=np.array([c0]), margin_curvature=np.array([c1]))[0]
-                 for g0, g1, m0, m1, c0, c1 in zip(ga, gb, ma, mb, cd, cm)]
-        bounds = np.array(pairs)
-        keep = np.isfinite(bounds) & (bounds <= 0.0)
-        done.append(bounds[~keep])
-        a, b, ga, gb, ma, mb, cd, cm = (x[keep] for x in (a, b, ga, gb, ma, mb, cd, cm))
-        bounds = bounds[keep]
-    done.append(bounds if a.size else np.array([]))
-    return float(np.concatenate(done).min(initial=np.inf))
+        got = turns([(w[0], np.array([0.5 * (w[1] + w[2])])) for w in work])
+        halves = []
+        for w, (gm, mm) in zip(work, got):
+            e, a, b, ga, gb, ma, mb, cd, cm, _ = w
+            mid = 0.5 * (a + b)
+            for end in ((a, mid, ga, gm[0], ma, mm[0]), (mid, b, gm[0], gb, mm[0], mb)):
+                bound = interval_bounds(np.array(end[2:4]), np.array(end[4:6]),
+                                        curvature=np.array([cd / 4.0]),
+                                        margin_curvature=np.array([cm / 4.0]))[0]
+                if np.isfinite(bound) and bound <= 0.0:
+                    halves.append((e, *end, cd / 4.0, cm / 4.0, bound))
+                else:
+                    lowest[e] = min(lowest[e], bound)
+        work = halves
+    for w in work:
+        lowest[w[0]] = min(lowest[w[0]], w[-1])
+    return lowest
 
 
 def _rot_z(p: np.ndarray, angle: np.ndarray) -> np.ndarray:
@@ -191,37 +197,80 @@ def edge_turns(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPo
     the point touches before the surface contact. NaN where Newton does not converge
     within 20 steps to 1e-9 mm.
     """
+    return _turns(pinion, gear, kin, mp, [(edge, s_mm)], forward=forward)[0]
+
+
+def _turns(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint,
+           items: list, *, forward: bool) -> list:
+    """:func:`edge_turns` of several ``(edge, s_mm)`` at once: one Newton iteration per
+    member for all its edges' points (a point whose iterate leaves the other flank's box
+    by more than the box's size, or turns by more than 1 rad, is given up)."""
     flank = {"pinion": pinion, "gear": gear}
     poses = {"pinion": kin.pinion_pose(mp.phi1_rad), "gear": kin.gear_pose(mp.phi2_rad)}
-    own, other = edge.member, "gear" if edge.member == "pinion" else "pinion"
-    uv = np.array([edge_parameters(flank[own], edge.name, float(t)) for t in s_mm])
-    rot, c = poses[own]
-    q = evaluate_many(flank[own], uv[:, 0], uv[:, 1])[0] @ rot.T + c - poses["gear"][1]
-    # a pinion point turns with the gear's inverse in the gear's frame, a gear point
-    # with the gear (about the gear axis, z, through the gear pose's offset)
-    turn = -kin.gear_axis[2] if own == "pinion" else kin.gear_axis[2]
-    rot_o, c_o = poses[other]
-    c_o = c_o - poses["gear"][1]
-    (u0, u1), (v0, v1) = flank[other].u_range, flank[other].v_range
-    ab = np.tile(np.asarray((mp.u2, mp.v2) if other == "gear" else (mp.u1, mp.v1), float),
-                 (len(q), 1))
+    out: list = [None] * len(items)
+    for own, other in (("pinion", "gear"), ("gear", "pinion")):
+        mine = [k for k, (edge, _) in enumerate(items) if edge.member == own]
+        if not mine:
+            continue
+        uv = np.array([edge_parameters(flank[own], items[k][0].name, float(t))
+                       for k in mine for t in items[k][1]])
+        rot, c = poses[own]
+        q = evaluate_many(flank[own], uv[:, 0], uv[:, 1])[0] @ rot.T + c - poses["gear"][1]
+        # a pinion point turns with the gear's inverse in the gear's frame, a gear point
+        # with the gear (about the gear axis, z, through the gear pose's offset)
+        turn = -kin.gear_axis[2] if own == "pinion" else kin.gear_axis[2]
+        delta, ab = _turn_newton(flank[other], poses[other], poses["gear"][1], q, turn,
+                                 (mp.u2, mp.v2) if other == "gear" else (mp.u1, mp.v1))
+        (u0, u1), (v0, v1) = flank[other].u_range, flank[other].v_range
+        margin = np.minimum.reduce([ab[:, 0] - u0, u1 - ab[:, 0], ab[:, 1] - v0,
+                                    v1 - ab[:, 1]])
+        margin = np.where(np.isfinite(delta), margin, np.nan)
+        gap = -delta if forward else delta
+        start = 0
+        for k in mine:
+            n = len(items[k][1])
+            out[k] = (gap[start:start + n], margin[start:start + n])
+            start += n
+    return out
+
+
+def _turn_newton(other: Surface, pose, centre: np.ndarray, q: np.ndarray, turn: float,
+                 ab0) -> tuple[np.ndarray, np.ndarray]:
+    """Newton on ``S(a, b) = Rz(turn delta) q`` for every point ``q`` (gear-centred
+    meshing frame; ``S`` the other flank posed by ``pose``): ``(delta, (a, b))``, delta
+    NaN where not converged within 20 steps to :data:`SCREEN_TOL_MM`."""
+    rot_o, c_o = pose
+    c_o = c_o - centre
+    (u0, u1), (v0, v1) = other.u_range, other.v_range
+    size = max(u1 - u0, v1 - v0)
+    ab = np.tile(np.asarray(ab0, float), (len(q), 1))
     delta = np.zeros(len(q))
     done = np.zeros(len(q), dtype=bool)
+    active = np.ones(len(q), dtype=bool)
     for _ in range(20):
-        r, r_u, r_v = evaluate_many(flank[other], ab[:, 0], ab[:, 1])
-        p = _rot_z(q, turn * delta)
+        idx = np.flatnonzero(active)
+        if idx.size == 0:
+            break
+        r, r_u, r_v = evaluate_many(other, ab[idx, 0], ab[idx, 1])
+        p = _rot_z(q[idx], turn * delta[idx])
         res = r @ rot_o.T + c_o - p
-        done = np.abs(res).max(axis=1) < SCREEN_TOL_MM
-        if done.all():
+        ok = np.abs(res).max(axis=1) < SCREEN_TOL_MM
+        done[idx[ok]] = True
+        active[idx[ok]] = False
+        idx, r_u, r_v, p, res = idx[~ok], r_u[~ok], r_v[~ok], p[~ok], res[~ok]
+        if idx.size == 0:
             break
         dp = turn * np.column_stack([-p[:, 1], p[:, 0], np.zeros(len(p))])
         jac = np.stack([r_u @ rot_o.T, r_v @ rot_o.T, -dp], axis=2)
-        step = np.linalg.solve(jac, -res[..., None])[..., 0]
-        step = np.where(np.isfinite(step), step, 0.0)
-        ab, delta = ab + step[:, :2], delta + step[:, 2]
-    delta = np.where(done, delta, np.nan)
-    margin = np.minimum.reduce([ab[:, 0] - u0, u1 - ab[:, 0], ab[:, 1] - v0, v1 - ab[:, 1]])
-    return (-delta if forward else delta), np.where(np.isfinite(delta), margin, np.nan)
+        with np.errstate(all="ignore"):
+            step = np.linalg.solve(jac, -res[..., None])[..., 0]
+        ab[idx] += step[:, :2]
+        delta[idx] += step[:, 2]
+        lost = (~np.isfinite(step).all(axis=1) | (np.abs(delta[idx]) > 1.0)
+                | (ab[idx, 0] < u0 - size) | (ab[idx, 0] > u1 + size)
+                | (ab[idx, 1] < v0 - size) | (ab[idx, 1] > v1 + size))
+        active[idx[lost]] = False
+    return np.where(done, delta, np.nan), ab
 
 
 def edge_gaps(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint, *,
@@ -252,14 +301,14 @@ def edge_gaps(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoi
     if edges is None:
         edges = flank_edges(pinion, gear)
     flank = {"pinion": pinion, "gear": gear}
-    out = []
-    for edge in edges:
-        s = np.linspace(*edge_span(flank[edge.member], edge.name), int(samples))
-        gap, margin = edge_turns(pinion, gear, kin, mp, edge, s, forward=forward)
-        lower = _refined_bound(lambda t, e=edge: edge_turns(pinion, gear, kin, mp, e, t,
-                                                            forward=forward), s, gap, margin)
-        out.append(EdgeGap(edge, s, gap, margin, lower))
-    return out
+    spans = [np.linspace(*edge_span(flank[edge.member], edge.name), int(samples))
+             for edge in edges]
+    turns = _turns(pinion, gear, kin, mp, list(zip(edges, spans)), forward=forward)
+    gaps, margins = [t[0] for t in turns], [t[1] for t in turns]
+    lower = _refined_bounds(
+        lambda items: _turns(pinion, gear, kin, mp, [(edges[e], s) for e, s in items],
+                             forward=forward), spans, gaps, margins)
+    return [EdgeGap(*row) for row in zip(edges, spans, gaps, margins, lower)]
 
 
 def edge_first(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint, *,
