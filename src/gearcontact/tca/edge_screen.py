@@ -234,6 +234,20 @@ def _turns(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint,
     return out
 
 
+def _solve_each(jac: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+    """Batched 3 x 3 solves; a singular system's row NaN (the point is given up)."""
+    try:
+        return np.linalg.solve(jac, rhs[..., None])[..., 0]
+    except np.linalg.LinAlgError:
+        out = np.full(rhs.shape, np.nan)
+        for k in range(len(rhs)):
+            try:
+                out[k] = np.linalg.solve(jac[k], rhs[k])
+            except np.linalg.LinAlgError:
+                pass
+        return out
+
+
 def _turn_newton(other: Surface, pose, centre: np.ndarray, q: np.ndarray, turn: float,
                  ab0) -> tuple[np.ndarray, np.ndarray]:
     """Newton on ``S(a, b) = Rz(turn delta) q`` for every point ``q`` (gear-centred
@@ -262,8 +276,7 @@ def _turn_newton(other: Surface, pose, centre: np.ndarray, q: np.ndarray, turn: 
             break
         dp = turn * np.column_stack([-p[:, 1], p[:, 0], np.zeros(len(p))])
         jac = np.stack([r_u @ rot_o.T, r_v @ rot_o.T, -dp], axis=2)
-        with np.errstate(all="ignore"):
-            step = np.linalg.solve(jac, -res[..., None])[..., 0]
+        step = _solve_each(jac, -res)
         ab[idx] += step[:, :2]
         delta[idx] += step[:, 2]
         lost = (~np.isfinite(step).all(axis=1) | (np.abs(delta[idx]) > 1.0)
