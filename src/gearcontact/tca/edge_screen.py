@@ -50,7 +50,7 @@ SCREEN_SAMPLES = 17
 #: difference over ``h^2`` (declared, docs sec. 5; tested against dense sampling).
 CURVATURE_FACTOR = 4.0
 #: Halvings of an interval the screen cannot rule out (its ``M`` kept).
-REFINE_LEVELS = 4
+REFINE_LEVELS = 8
 #: An edge contact replaces the surface contact only when it touches first by more than
 #: this gear turn, rad (~2e-4 arcsec; the point solves' tolerance 1e-10 mm is ~1e-12 rad).
 EDGE_LEAD_RAD = 1e-9
@@ -141,35 +141,40 @@ def interval_bounds(gap: np.ndarray, margin_mm: np.ndarray, *, curvature=None,
     return out
 
 
-def _refined_bounds(turns, spans: list, gaps: list, margins: list) -> list:
+def _refined_bounds(turns, spans: list, gaps: list, margins: list, abs_: list) -> list:
     """Every edge's lower bound with each interval whose bound is finite and not
     positive halved :data:`REFINE_LEVELS` times, its ``M`` (of ``g`` and of the margin)
     kept: each half's ``M h^2`` a quarter of its parent's. ``turns(items)``: the
-    ``(g, margin)`` of ``(edge index, s)`` items (all edges' midpoints of a level at
-    once)."""
+    ``(g, margin, ab)`` of ``(edge index, s[, ab0, g0])`` items (all edges' midpoints of
+    a level at once, each started from the mean of its interval's ends)."""
     lowest = []
-    work = []       # per open interval: edge, a, b, g_a, g_b, m_a, m_b, M_g h^2, M_m h^2
-    for e, (s, gap, margin) in enumerate(zip(spans, gaps, margins)):
+    work = []       # per open interval: edge, (a, g, m, ab) of both ends, M_g h^2, M_m h^2
+    for e, (s, gap, margin, ab) in enumerate(zip(spans, gaps, margins, abs_)):
         cd, cm = CURVATURE_FACTOR * _local_d2(gap), CURVATURE_FACTOR * _local_d2(margin)
         bounds = interval_bounds(gap, margin, curvature=cd, margin_curvature=cm)
         open_ = np.isfinite(bounds) & (bounds <= 0.0)
         lowest.append(float(bounds[~open_].min(initial=np.inf)))
-        work += [(e, s[k], s[k + 1], gap[k], gap[k + 1], margin[k], margin[k + 1], cd[k],
-                  cm[k], bounds[k]) for k in np.flatnonzero(open_)]
+        work += [(e, (s[k], gap[k], margin[k], ab[k]), (s[k + 1], gap[k + 1], margin[k + 1],
+                                                        ab[k + 1]), cd[k], cm[k], bounds[k])
+                 for k in np.flatnonzero(open_)]
     for _ in range(REFINE_LEVELS):
         if not work:
             break
-        got = turns([(w[0], np.array([0.5 * (w[1] + w[2])])) for w in work])
+        items = []
+        for e, lo, hi, *_ in work:
+            mid = np.array([0.5 * (lo[0] + hi[0])])
+            ab0, g0 = 0.5 * (lo[3] + hi[3]), 0.5 * (lo[1] + hi[1])
+            items.append((e, mid, ab0[None], np.array([g0])) if np.isfinite(ab0).all()
+                         and np.isfinite(g0) else (e, mid))
         halves = []
-        for w, (gm, mm) in zip(work, got):
-            e, a, b, ga, gb, ma, mb, cd, cm, _ = w
-            mid = 0.5 * (a + b)
-            for end in ((a, mid, ga, gm[0], ma, mm[0]), (mid, b, gm[0], gb, mm[0], mb)):
-                bound = interval_bounds(np.array(end[2:4]), np.array(end[4:6]),
+        for (e, lo, hi, cd, cm, _), (gm, mm, abm) in zip(work, turns(items)):
+            mid = (0.5 * (lo[0] + hi[0]), gm[0], mm[0], abm[0])
+            for a, b in ((lo, mid), (mid, hi)):
+                bound = interval_bounds(np.array([a[1], b[1]]), np.array([a[2], b[2]]),
                                         curvature=np.array([cd / 4.0]),
                                         margin_curvature=np.array([cm / 4.0]))[0]
                 if np.isfinite(bound) and bound <= 0.0:
-                    halves.append((e, *end, cd / 4.0, cm / 4.0, bound))
+                    halves.append((e, a, b, cd / 4.0, cm / 4.0, bound))
                 else:
                     lowest[e] = min(lowest[e], bound)
         work = halves
@@ -197,19 +202,21 @@ def edge_turns(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPo
     the point touches before the surface contact. NaN where Newton does not converge
     within 20 steps to 1e-9 mm.
     """
-    return _turns(pinion, gear, kin, mp, [(edge, s_mm)], forward=forward)[0]
+    return _turns(pinion, gear, kin, mp, [(edge, s_mm)], forward=forward)[0][:2]
 
 
 def _turns(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint,
            items: list, *, forward: bool) -> list:
-    """:func:`edge_turns` of several ``(edge, s_mm)`` at once: one Newton iteration per
-    member for all its edges' points (a point whose iterate leaves the other flank's box
-    by more than the box's size, or turns by more than 1 rad, is given up)."""
+    """:func:`edge_turns` of several ``(edge, s_mm)`` or ``(edge, s_mm, ab0, g0)`` (Newton
+    started from the other flank's parameters ``ab0`` and the turn gap ``g0`` instead of
+    the contact's) at once: one Newton iteration per member for all its edges' points (a
+    point whose iterate leaves the other flank's box by more than the box's size, or
+    turns by more than 1 rad, is given up). Per item ``(g, margin, ab)``."""
     flank = {"pinion": pinion, "gear": gear}
     poses = {"pinion": kin.pinion_pose(mp.phi1_rad), "gear": kin.gear_pose(mp.phi2_rad)}
     out: list = [None] * len(items)
     for own, other in (("pinion", "gear"), ("gear", "pinion")):
-        mine = [k for k, (edge, _) in enumerate(items) if edge.member == own]
+        mine = [k for k, item in enumerate(items) if item[0].member == own]
         if not mine:
             continue
         uv = np.array([edge_parameters(flank[own], items[k][0].name, float(t))
@@ -219,8 +226,13 @@ def _turns(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint,
         # a pinion point turns with the gear's inverse in the gear's frame, a gear point
         # with the gear (about the gear axis, z, through the gear pose's offset)
         turn = -kin.gear_axis[2] if own == "pinion" else kin.gear_axis[2]
+        at = np.asarray((mp.u2, mp.v2) if other == "gear" else (mp.u1, mp.v1), float)
+        ab0 = np.concatenate([items[k][2] if len(items[k]) > 2
+                              else np.tile(at, (len(items[k][1]), 1)) for k in mine])
+        g0 = np.concatenate([items[k][3] if len(items[k]) > 2
+                             else np.zeros(len(items[k][1])) for k in mine])
         delta, ab = _turn_newton(flank[other], poses[other], poses["gear"][1], q, turn,
-                                 (mp.u2, mp.v2) if other == "gear" else (mp.u1, mp.v1))
+                                 ab0, -g0 if forward else g0)
         (u0, u1), (v0, v1) = flank[other].u_range, flank[other].v_range
         margin = np.minimum.reduce([ab[:, 0] - u0, u1 - ab[:, 0], ab[:, 1] - v0,
                                     v1 - ab[:, 1]])
@@ -229,7 +241,7 @@ def _turns(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint,
         start = 0
         for k in mine:
             n = len(items[k][1])
-            out[k] = (gap[start:start + n], margin[start:start + n])
+            out[k] = (gap[start:start + n], margin[start:start + n], ab[start:start + n])
             start += n
     return out
 
@@ -249,7 +261,7 @@ def _solve_each(jac: np.ndarray, rhs: np.ndarray) -> np.ndarray:
 
 
 def _turn_newton(other: Surface, pose, centre: np.ndarray, q: np.ndarray, turn: float,
-                 ab0) -> tuple[np.ndarray, np.ndarray]:
+                 ab0: np.ndarray, delta0: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Newton on ``S(a, b) = Rz(turn delta) q`` for every point ``q`` (gear-centred
     meshing frame; ``S`` the other flank posed by ``pose``): ``(delta, (a, b))``, delta
     NaN where not converged within 20 steps to :data:`SCREEN_TOL_MM`."""
@@ -257,8 +269,8 @@ def _turn_newton(other: Surface, pose, centre: np.ndarray, q: np.ndarray, turn: 
     c_o = c_o - centre
     (u0, u1), (v0, v1) = other.u_range, other.v_range
     size = max(u1 - u0, v1 - v0)
-    ab = np.tile(np.asarray(ab0, float), (len(q), 1))
-    delta = np.zeros(len(q))
+    ab = np.array(ab0, float)
+    delta = np.array(delta0, float)
     done = np.zeros(len(q), dtype=bool)
     active = np.ones(len(q), dtype=bool)
     for _ in range(20):
@@ -319,8 +331,8 @@ def edge_gaps(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoi
     turns = _turns(pinion, gear, kin, mp, list(zip(edges, spans)), forward=forward)
     gaps, margins = [t[0] for t in turns], [t[1] for t in turns]
     lower = _refined_bounds(
-        lambda items: _turns(pinion, gear, kin, mp, [(edges[e], s) for e, s in items],
-                             forward=forward), spans, gaps, margins)
+        lambda items: _turns(pinion, gear, kin, mp, [(edges[i[0]], *i[1:]) for i in items],
+                             forward=forward), spans, gaps, margins, [t[2] for t in turns])
     return [EdgeGap(*row) for row in zip(edges, spans, gaps, margins, lower)]
 
 
