@@ -299,7 +299,8 @@ def _turn_newton(other: Surface, pose, centre: np.ndarray, q: np.ndarray, turn: 
 
 
 def edge_gaps(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint, *,
-              forward: bool, edges=None, samples: int = SCREEN_SAMPLES) -> list[EdgeGap]:
+              forward: bool, edges=None, samples: int = SCREEN_SAMPLES,
+              memo: dict | None = None) -> list[EdgeGap]:
     """The screen of every candidate edge at the surface contact ``mp``.
 
     Parameters
@@ -316,6 +317,9 @@ def edge_gaps(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoi
         Default :func:`~.edge_contact.flank_edges`.
     samples : int
         Even samples per edge (>= 4).
+    memo : dict, optional
+        Newton starts kept between calls (pass the same dict along a path: each edge
+        sample then starts from its touch at the previous call).
 
     Returns
     -------
@@ -328,7 +332,19 @@ def edge_gaps(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoi
     flank = {"pinion": pinion, "gear": gear}
     spans = [np.linspace(*edge_span(flank[edge.member], edge.name), int(samples))
              for edge in edges]
-    turns = _turns(pinion, gear, kin, mp, list(zip(edges, spans)), forward=forward)
+    items = []
+    for edge, s in zip(edges, spans):
+        at = np.array((mp.u2, mp.v2) if edge.member == "pinion" else (mp.u1, mp.v1), float)
+        ab0, g0 = (None, None) if memo is None else memo.get((edge.label, s.size), (None, None))
+        if ab0 is None:
+            items.append((edge, s))
+            continue
+        known = np.isfinite(ab0).all(axis=1) & np.isfinite(g0)
+        items.append((edge, s, np.where(known[:, None], ab0, at), np.where(known, g0, 0.0)))
+    turns = _turns(pinion, gear, kin, mp, items, forward=forward)
+    if memo is not None:
+        for edge, s, (gap, _, ab) in zip(edges, spans, turns):
+            memo[(edge.label, s.size)] = (ab, gap)
     gaps, margins = [t[0] for t in turns], [t[1] for t in turns]
     lower = _refined_bounds(
         lambda items: _turns(pinion, gear, kin, mp, [(edges[i[0]], *i[1:]) for i in items],
@@ -337,7 +353,7 @@ def edge_gaps(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoi
 
 
 def edge_first(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint, *,
-               forward: bool, tol_mm: float = 1e-10) -> MatingPoint:
+               forward: bool, tol_mm: float = 1e-10, memo: dict | None = None) -> MatingPoint:
     """The first contact at the phase of the surface mating point ``mp``: ``mp`` itself,
     or an edge contact that touches before it (module docstring).
 
@@ -349,14 +365,16 @@ def edge_first(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPo
         The gear is pushed towards +phi2 (the first touch is the largest turn).
     tol_mm : float
         Tolerance of the exact edge solve's point equations, mm.
+    memo : dict, optional
+        The screen's Newton starts (:func:`edge_gaps`).
 
     Returns
     -------
     MatingPoint
         ``mp`` (the same object) if no edge touches first, else the edge contact.
     """
-    open_edges = [g.edge for g in edge_gaps(pinion, gear, kin, mp, forward=forward)
-                  if not g.ruled_out]
+    open_edges = [g.edge for g in edge_gaps(pinion, gear, kin, mp, forward=forward,
+                                            memo=memo) if not g.ruled_out]
     if not open_edges:
         return mp
     edge = solve_edge_contact(pinion, gear, kin, mp.phi1_rad, guess=mp.as_guess(),

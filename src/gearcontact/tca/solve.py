@@ -131,9 +131,11 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
         return a if (a.phi2_rad >= b.phi2_rad) == forward else b
 
     check = edges and edge_check
+    screen_memo: dict = {}      # the edge screen's Newton starts along the path
 
     def checked(surface: MatingPoint) -> MatingPoint:
-        return edge_first(pinion, gear, kin, surface, forward=forward, tol_mm=tol_mm)
+        return edge_first(pinion, gear, kin, surface, forward=forward, tol_mm=tol_mm,
+                          memo=screen_memo)
 
     for direction, indices in ((+1, range(i0, phis.size)), (-1, range(i0 - 1, -1, -1))):
         prev, prev2 = ref, None
