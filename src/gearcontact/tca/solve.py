@@ -2,7 +2,8 @@
 
 :func:`solve_tca` follows the mating point of two flanks (:mod:`.mating`, Newton per
 phase) along the pinion phases by continuation, and through edge-to-surface contact
-(:mod:`.edge_contact`) where the surface mating point leaves a flank. The types, the
+(:mod:`.edge_contact`) where the surface mating point leaves a flank or an edge touches
+before it (:mod:`.edge_screen`). The types, the
 constants and the errors of the TCA are in :mod:`.types`, the mating-point solver in
 :mod:`.mating` (their former names here are deprecated).
 
