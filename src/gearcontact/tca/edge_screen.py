@@ -318,8 +318,8 @@ def edge_gaps(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoi
     samples : int
         Even samples per edge (>= 4).
     memo : dict, optional
-        Newton starts kept between calls (pass the same dict along a path: each edge
-        sample then starts from its touch at the previous call).
+        Filled with each edge's touches (by label and sample count); a later call with
+        it starts each sample's Newton there (one dict along a path).
 
     Returns
     -------
