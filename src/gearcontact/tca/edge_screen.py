@@ -37,7 +37,11 @@ import numpy as np
 
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
-from .edge_contact import FlankEdge, edge_parameters, edge_span, flank_edges, solve_edge_contact
+from .edge_contact import (FlankEdge, edge_parameters, edge_span, flank_edges, is_kink,
+                           solve_edge_contact)
+from .edge_kernel import EDGE_CODES, EDGE_KINK
+from .gap_kernel import kernel_surface
+from .screen_kernel import screen
 from .stencil import evaluate_many
 from .types import MatingPoint
 
@@ -332,6 +336,10 @@ def edge_gaps(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoi
     flank = {"pinion": pinion, "gear": gear}
     spans = [np.linspace(*edge_span(flank[edge.member], edge.name), int(samples))
              for edge in edges]
+    compiled = _compiled_screen(pinion, gear, kin, mp, edges, spans, forward=forward,
+                                memo=memo)
+    if compiled is not None:
+        return [EdgeGap(*row) for row in zip(edges, spans, *compiled)]
     items = []
     for edge, s in zip(edges, spans):
         at = np.array((mp.u2, mp.v2) if edge.member == "pinion" else (mp.u1, mp.v1), float)
@@ -350,6 +358,50 @@ def edge_gaps(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoi
         lambda items: _turns(pinion, gear, kin, mp, [(edges[i[0]], *i[1:]) for i in items],
                              forward=forward), spans, gaps, margins, [t[2] for t in turns])
     return [EdgeGap(*row) for row in zip(edges, spans, gaps, margins, lower)]
+
+
+def _compiled_screen(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint,
+                     edges, spans: list, *, forward: bool, memo: dict | None):
+    """``(gaps, margins, lower bounds)`` of :func:`edge_gaps` from the compiled screen
+    (:func:`.screen_kernel.screen`, the same procedure), or None when a flank has no
+    kernel form (:func:`~.gap_kernel.kernel_surface`)."""
+    forms = kernel_surface(pinion), kernel_surface(gear)
+    if forms[0] is None or forms[1] is None or len({s.size for s in spans}) > 1:
+        return None
+    flank = {"pinion": pinion, "gear": gear}
+    poses = (kin.pinion_pose(mp.phi1_rad), kin.gear_pose(mp.phi2_rad))
+    centre = poses[1][1]
+    boxes = np.array([[*f.u_range, *f.v_range] for f in (pinion, gear)], float)
+    rots = np.ascontiguousarray(np.stack([poses[0][0], poses[1][0]]), dtype=float)
+    cs = np.ascontiguousarray(np.stack([poses[0][1] - centre, poses[1][1] - centre]),
+                              dtype=float)
+    turns = np.array([-kin.gear_axis[2], kin.gear_axis[2]], float)
+    at = np.array([[mp.u2, mp.v2], [mp.u1, mp.v1]], float)
+    members = np.array([0 if e.member == "pinion" else 1 for e in edges], np.int64)
+    codes, kinks = np.empty(len(edges), np.int64), np.full(len(edges), -1, np.int64)
+    for k, e in enumerate(edges):
+        own = flank[e.member]
+        if is_kink(own, e.name):
+            codes[k], kinks[k] = EDGE_KINK, [c.name for c in own.kinks].index(e.name)
+        else:
+            codes[k] = EDGE_CODES[e.name]
+    n = spans[0].size if spans else 0
+    s_all = np.array(spans, float).reshape(len(edges), n)
+    start_ab = np.full((len(edges), n, 2), np.nan)
+    start_g = np.full((len(edges), n), np.nan)
+    for k, e in enumerate(edges):
+        ab0, g0 = (None, None) if memo is None else memo.get((e.label, n), (None, None))
+        if ab0 is not None:
+            start_ab[k], start_g[k] = ab0, g0
+    gap, margin = np.empty((len(edges), n)), np.empty((len(edges), n))
+    ab, lower = np.empty((len(edges), n, 2)), np.empty(len(edges))
+    screen(forms[0], forms[1], boxes, rots, cs, turns, at, members, codes, kinks, s_all,
+           start_ab, start_g, bool(forward), SCREEN_TOL_MM, 20, CURVATURE_FACTOR,
+           REFINE_LEVELS, gap, margin, ab, lower)
+    if memo is not None:
+        for k, e in enumerate(edges):
+            memo[(e.label, n)] = (ab[k], gap[k])
+    return list(gap), list(margin), [float(x) for x in lower]
 
 
 def edge_first(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint, *,
