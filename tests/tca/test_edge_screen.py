@@ -12,7 +12,16 @@ Truths:
 (b) dense sampling: on s0003's coast at surface phases, the screen's bound of every edge
     (17 samples, refined) is at most the turn gap of 801 even points of the edge whose
     touch lies inside the other flank's box (the same point solve, :func:`edge_turns`),
-    less 1e-12 rad (the point solves' tolerance 1e-9 mm over radii > 10 mm).
+    less 1e-12 rad (the point solves' tolerance 1e-9 mm over radii > 10 mm);
+(c) an independent solver: the compiled screen (tca.screen_kernel, the default where both
+    flanks have a kernel form) against the numpy path (vectorized Newton, LAPACK solves,
+    the flanks' vectorized ``evaluate``) at the same surface contacts, with the Newton
+    starts carried along (``memo``): the same samples solved, the same edges ruled out,
+    turn gaps within 2e-10 rad and margins within 2e-9 mm (two solutions of the same
+    equations, each to a residual below 1e-9 mm: 2e-9 mm over flank derivatives >= 1
+    and radii >= 10 mm), lower bounds within 1e-9 rad (a bound is a sample's gap less
+    ``4 |second difference| / 8`` (or ``2 g_a - g_a' - 4 |...|``): at most 4.5 times
+    the gaps' error).
 """
 
 import numpy as np
@@ -49,6 +58,58 @@ def test_an_interval_beyond_the_box_cannot_touch():
     g = -0.1 * np.ones_like(s)
     assert np.all(interval_bounds(g, -np.ones_like(s)) == np.inf)
     assert np.all(interval_bounds(g, np.ones_like(s)) < 0.0)
+
+
+def _coast_contacts(s0003_centred):
+    """s0003's coast flanks, kinematics, direction and three surface contacts (the flank
+    set's mean contact turned by -0.1, 0, +0.1 rad of the pinion)."""
+    from gearcontact.tca.analysis import reference_start
+    from gearcontact.tca.edge_contact import pushes_forward
+    from gearcontact.tca.mating import solve_mating_point
+
+    pair, flanks = s0003_centred
+    pinion, gear = flanks.flank("pinion", "coast"), flanks.flank("gear", "coast")
+    kin = pair.kinematics()
+    start, fixed = reference_start(pair, flanks, "coast")
+    mp0 = solve_mating_point(pinion, gear, kin, start, fixed=fixed)
+    forward = pushes_forward(gear, kin, mp0.as_guess())
+    contacts = []
+    for dphi in (-0.1, 0.0, 0.1):
+        guess = mp0.as_guess()
+        guess = type(guess)(guess.u1, guess.v1, guess.u2, guess.v2, guess.phi1_rad + dphi,
+                            guess.phi2_rad + dphi / kin.ratio)
+        contacts.append(solve_mating_point(pinion, gear, kin, guess))
+    return pinion, gear, kin, forward, contacts
+
+
+def test_the_compiled_screen_is_the_numpy_screen(s0003_centred, monkeypatch):
+    # (c): the compiled screen against the numpy path, the starts carried along both
+    from gearcontact.tca import edge_screen
+
+    pinion, gear, kin, forward, contacts = _coast_contacts(s0003_centred)
+    memo_c, memo_n = {}, {}
+    compared = 0
+    for mp in contacts:
+        assert edge_screen._compiled_screen(pinion, gear, kin, mp, edge_screen.flank_edges(
+            pinion, gear), [np.linspace(0.0, 1.0, 17)] * 8, forward=forward,
+            memo=None) is not None
+        got = edge_gaps(pinion, gear, kin, mp, forward=forward, memo=memo_c)
+        with monkeypatch.context() as m:
+            m.setattr(edge_screen, "_compiled_screen", lambda *a, **k: None)
+            ref = edge_gaps(pinion, gear, kin, mp, forward=forward, memo=memo_n)
+        for a, b in zip(got, ref):
+            assert a.edge == b.edge
+            np.testing.assert_array_equal(a.s_mm, b.s_mm)
+            np.testing.assert_array_equal(np.isnan(a.gap_rad), np.isnan(b.gap_rad))
+            np.testing.assert_allclose(a.gap_rad, b.gap_rad, rtol=0, atol=2e-10)
+            np.testing.assert_allclose(a.margin_mm, b.margin_mm, rtol=0, atol=2e-9)
+            assert a.ruled_out == b.ruled_out, a.edge.label
+            if np.isfinite(b.lower_rad):
+                assert abs(a.lower_rad - b.lower_rad) <= 1e-9, a.edge.label
+            else:
+                assert a.lower_rad == b.lower_rad, a.edge.label
+            compared += np.isfinite(b.gap_rad).sum()
+    assert compared >= 100
 
 
 def test_the_screens_bound_is_below_the_dense_gap(s0003_centred):
