@@ -116,23 +116,10 @@ def test_the_screens_bound_is_below_the_dense_gap(s0003_centred):
     # (b) on s0003's coast at three surface phases of its TCA path (the path of
     # test_tca's coast cycle is not built here: the surface points are solved from the
     # flank set's mean contact, turned by -0.1, 0, +0.1 rad of the pinion)
-    from gearcontact.tca.analysis import reference_start
-    from gearcontact.tca.edge_contact import pushes_forward
-    from gearcontact.tca.mating import solve_mating_point
-
-    pair, flanks = s0003_centred
-    pinion, gear = flanks.flank("pinion", "coast"), flanks.flank("gear", "coast")
-    kin = pair.kinematics()
-    start, fixed = reference_start(pair, flanks, "coast")
-    mp0 = solve_mating_point(pinion, gear, kin, start, fixed=fixed)
-    forward = pushes_forward(gear, kin, mp0.as_guess())
+    pinion, gear, kin, forward, contacts = _coast_contacts(s0003_centred)
     flank = {"pinion": pinion, "gear": gear}
     checked = 0
-    for dphi in (-0.1, 0.0, 0.1):
-        guess = mp0.as_guess()
-        guess = type(guess)(guess.u1, guess.v1, guess.u2, guess.v2, guess.phi1_rad + dphi,
-                            guess.phi2_rad + dphi / kin.ratio)
-        mp = solve_mating_point(pinion, gear, kin, guess)
+    for mp in contacts:
         for gap in edge_gaps(pinion, gear, kin, mp, forward=forward):
             if not np.isfinite(gap.lower_rad):
                 continue

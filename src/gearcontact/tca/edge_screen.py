@@ -23,7 +23,9 @@ contact is inside (session 29)"):
    slope's error within ``M h / 2``): ``g >= min(g_a, 2 g_a - g_a' - M h^2)``, the
    margin likewise from above.
    An edge whose smallest interval bound is positive cannot touch first and is ruled
-   out.
+   out. Where both flanks have a kernel form (:func:`~.gap_kernel.kernel_surface`) the
+   screen runs compiled (:func:`.screen_kernel.screen`, the same procedure; the numpy
+   path here otherwise).
 2. **The exact solve** (:func:`~.edge_contact.solve_edge_contact`) over the edges the
    screen did not rule out: the edge contact replaces the surface contact only if it
    touches first by more than :data:`EDGE_LEAD_RAD` of gear turn.

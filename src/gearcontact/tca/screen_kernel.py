@@ -27,8 +27,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..geometry.kinked import kink_u
-from .edge_kernel import EDGE_HEEL, EDGE_KINK, EDGE_ROOT, EDGE_TOE
+from .edge_kernel import edge_point
 from .gap_kernel import flank_vector, solve3
 
 __all__ = ["point_turn", "sample_bounds", "screen"]
@@ -48,15 +47,7 @@ def point_turn(okd, opa, otx, oty, opc, okx, okc, okn,
     centres already less the gear's; ``turn``: the axis sign of the edge point's turn;
     ``(a0, b0, delta0)``: the start.
     """
-    if code == EDGE_KINK:
-        u = min(max(kink_u(okx[kink], okc[kink], okn[kink], s), own_box[0]), own_box[1])
-        v = s
-    elif code == EDGE_TOE or code == EDGE_HEEL:
-        u = s
-        v = own_box[2] if code == EDGE_TOE else own_box[3]
-    else:
-        u = own_box[0] if code == EDGE_ROOT else own_box[1]
-        v = s
+    u, v = edge_point(code, kink, okx, okc, okn, own_box, s)
     d = np.zeros(6)
     vec = np.empty((7, 3))
     flank_vector(okd, opa, otx, oty, opc, okx, okc, okn, u, v, d, vec)
