@@ -13,6 +13,10 @@ Truths:
     (17 samples, refined) is at most the turn gap of 801 even points of the edge whose
     touch lies inside the other flank's box (the same point solve, :func:`edge_turns`),
     less 1e-12 rad (the point solves' tolerance 1e-9 mm over radii > 10 mm);
+(b') dense sampling, the finer screen: on the calibrated s0003's coast TCA (15 phases)
+    every edge screened again at FINE_SAMPLES (its bound -inf at 17) has a bound at most
+    the turn gap of 801 even points whose touch lies inside the other box, less 1e-12 rad
+    (as (b));
 (c) an independent solver: the compiled screen (tca.screen_kernel, the default where both
     flanks have a kernel form) against the numpy path (vectorized Newton, LAPACK solves,
     the flanks' vectorized ``evaluate``) at the same surface contacts, with the Newton
@@ -28,8 +32,8 @@ import numpy as np
 import pytest
 
 from gearcontact.tca.edge_contact import edge_span
-from gearcontact.tca.edge_screen import (CURVATURE_FACTOR, edge_gaps, edge_turns,
-                                         interval_bounds)
+from gearcontact.tca.edge_screen import (CURVATURE_FACTOR, FINE_SAMPLES, edge_gaps,
+                                         edge_turns, interval_bounds)
 
 
 @pytest.mark.parametrize("a, s0, c", [(0.3, 0.37, 0.01), (-0.05, 0.5, 0.2), (2.0, 0.0, 1e-4)])
@@ -130,3 +134,36 @@ def test_the_screens_bound_is_below_the_dense_gap(s0003_centred):
                 assert gap.lower_rad <= g[inside].min() + 1e-12, gap.edge.label
                 checked += 1
     assert checked >= 6
+
+
+def test_the_finer_screens_bound_is_below_the_dense_gap(s0003_calibrated, monkeypatch):
+    # (b'): the finer screens of a TCA path (their memo starts as on the path), each
+    # checked against 801 points solved from the contact
+    from gearcontact.tca import edge_screen
+    from gearcontact.tca.analysis import analyze_pair
+
+    pair, flanks = s0003_calibrated
+    finer = []
+    screen = edge_screen._screen
+
+    def recorded(pinion, gear, kin, mp, **kw):
+        out = screen(pinion, gear, kin, mp, **kw)
+        if kw["samples"] == FINE_SAMPLES:
+            finer.extend((pinion, gear, kin, mp, kw["forward"], got) for got in out)
+        return out
+
+    monkeypatch.setattr(edge_screen, "_screen", recorded)
+    analyze_pair(pair, side="coast", phases=15, flanks=flanks)
+    checked = 0
+    for pinion, gear, kin, mp, forward, got in finer:
+        assert got.s_mm.size == FINE_SAMPLES
+        if not np.isfinite(got.lower_rad):
+            continue
+        flank = {"pinion": pinion, "gear": gear}[got.edge.member]
+        s = np.linspace(*edge_span(flank, got.edge.name), 801)
+        g, margin = edge_turns(pinion, gear, kin, mp, got.edge, s, forward=forward)
+        inside = np.isfinite(g) & (margin >= 0.0)
+        if inside.any():
+            assert got.lower_rad <= g[inside].min() + 1e-12, got.edge.label
+            checked += 1
+    assert len(finer) >= 10 and checked >= 6, (len(finer), checked)   # 15 and 11

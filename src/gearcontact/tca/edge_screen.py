@@ -22,8 +22,9 @@ contact is inside (session 29)"):
    is bounded from its solved end ``a`` and that end's other neighbour ``a'`` (the
    slope's error within ``M h / 2``): ``g >= min(g_a, 2 g_a - g_a' - M h^2)``, the
    margin likewise from above.
-   An edge whose smallest interval bound is positive cannot touch first and is ruled
-   out. Where both flanks have a kernel form (:func:`~.gap_kernel.kernel_surface`) the
+   An edge whose bound is -inf (too few solved samples for a curvature bound) is
+   screened once more at :data:`FINE_SAMPLES`. An edge whose smallest interval bound is
+   positive cannot touch first and is ruled out. Where both flanks have a kernel form (:func:`~.gap_kernel.kernel_surface`) the
    screen runs compiled (:func:`.screen_kernel.screen`, the same procedure; the numpy
    path here otherwise).
 2. **The exact solve** (:func:`~.edge_contact.solve_edge_contact`) over the edges the
@@ -47,11 +48,14 @@ from .screen_kernel import screen
 from .stencil import evaluate_many
 from .types import MatingPoint
 
-__all__ = ["SCREEN_SAMPLES", "CURVATURE_FACTOR", "EDGE_LEAD_RAD", "EdgeGap", "interval_bounds",
+__all__ = ["SCREEN_SAMPLES", "FINE_SAMPLES", "CURVATURE_FACTOR", "EDGE_LEAD_RAD", "EdgeGap", "interval_bounds",
            "edge_turns", "edge_gaps", "edge_first", "leads"]
 
 #: Even samples of each edge in the screen (both ends included).
 SCREEN_SAMPLES = 17
+#: Even samples of an edge screened again because its bound at fewer samples is -inf
+#: (too few solved samples for a curvature bound; a quarter of the spacing).
+FINE_SAMPLES = 65
 #: The bound on ``|d''|`` of an edge: this factor times its largest sampled second
 #: difference over ``h^2`` (declared, docs sec. 5; tested against dense sampling).
 CURVATURE_FACTOR = 4.0
@@ -322,7 +326,9 @@ def edge_gaps(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoi
     edges : sequence of FlankEdge, optional
         Default :func:`~.edge_contact.flank_edges`.
     samples : int
-        Even samples per edge (>= 4).
+        Even samples per edge (>= 4). An edge whose bound is -inf is screened again at
+        :data:`FINE_SAMPLES` when ``samples`` is fewer (module docstring); its
+        :class:`EdgeGap` is then the finer screen's.
     memo : dict, optional
         Filled with each edge's touches (by label and sample count); a later call with
         it starts each sample's Newton there (one dict along a path).
@@ -335,6 +341,20 @@ def edge_gaps(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoi
         raise ValueError(f"samples = {samples!r} must be >= 4")
     if edges is None:
         edges = flank_edges(pinion, gear)
+    out = _screen(pinion, gear, kin, mp, forward=forward, edges=edges, samples=samples,
+                  memo=memo)
+    again = [k for k, got in enumerate(out) if got.lower_rad == -np.inf]
+    if again and int(samples) < FINE_SAMPLES:
+        finer = _screen(pinion, gear, kin, mp, forward=forward,
+                        edges=[out[k].edge for k in again], samples=FINE_SAMPLES, memo=memo)
+        for k, got in zip(again, finer):
+            out[k] = got
+    return out
+
+
+def _screen(pinion: Surface, gear: Surface, kin: MeshKinematics, mp: MatingPoint, *,
+            forward: bool, edges, samples: int, memo: dict | None) -> list[EdgeGap]:
+    """:func:`edge_gaps` at ``samples`` per edge, without the finer screen."""
     flank = {"pinion": pinion, "gear": gear}
     spans = [np.linspace(*edge_span(flank[edge.member], edge.name), int(samples))
              for edge in edges]
