@@ -91,6 +91,11 @@ def point_turn(okd, opa, otx, oty, opc, okx, okc, okn,
         jac[0, 2] = -(turn * -p1)
         jac[1, 2] = -(turn * p0)
         jac[2, 2] = -(turn * 0.0)
+        det = (jac[0, 0] * (jac[1, 1] * jac[2, 2] - jac[1, 2] * jac[2, 1])
+               - jac[0, 1] * (jac[1, 0] * jac[2, 2] - jac[1, 2] * jac[2, 0])
+               + jac[0, 2] * (jac[1, 0] * jac[2, 1] - jac[1, 1] * jac[2, 0]))
+        if det == 0.0:          # singular: given up (LAPACK's refusal on the numpy path)
+            return
         solve3(jac, rhs, step)
         a += step[0]
         b += step[1]
