@@ -43,12 +43,27 @@ from ..geometry.kinked import kink_u
 from .gap_kernel import KIND_CONE, flank_vector, solve3
 
 __all__ = ["EDGE_CODES", "EDGE_TOE", "EDGE_HEEL", "EDGE_ROOT", "EDGE_TIP", "EDGE_KINK",
-           "edge_newton", "warm_up"]
+           "edge_point", "edge_newton", "warm_up"]
 
 #: Edge codes of :func:`edge_newton`: the box edges of
 #: :data:`~.edge_contact.EDGE_NAMES` and a kink line.
 EDGE_TOE, EDGE_HEEL, EDGE_ROOT, EDGE_TIP, EDGE_KINK = 0, 1, 2, 3, 4
 EDGE_CODES = {"toe": EDGE_TOE, "heel": EDGE_HEEL, "root": EDGE_ROOT, "tip": EDGE_TIP}
+
+
+@njit(cache=True, inline="always")
+def edge_point(edge, kink, kink_x, kink_c, kink_n, box, s):
+    """Flank parameters ``(u, v)`` of the point ``s`` of an edge (:data:`EDGE_CODES`,
+    a kink line ``kink`` of the tables ``kink_x``, ``kink_c``, ``kink_n``) of a flank
+    with the box ``(u_root, u_tip, v_toe, v_heel)``, as
+    :func:`~.edge_contact.edge_parameters` gives them (a ridge point clipped into the
+    box's ``u``), mm."""
+    if edge == EDGE_KINK:
+        return min(max(kink_u(kink_x[kink], kink_c[kink], kink_n[kink], s), box[0]),
+                   box[1]), s
+    if edge == EDGE_TOE or edge == EDGE_HEEL:
+        return s, (box[2] if edge == EDGE_TOE else box[3])
+    return (box[0] if edge == EDGE_ROOT else box[1]), s
 
 
 @njit(cache=True)
@@ -95,15 +110,7 @@ def edge_newton(own_kind, own_par, own_tx, own_ty, own_pc, own_kx, own_kc, own_k
     bool
         Converged (else no touch near ``y0``).
     """
-    if edge == EDGE_KINK:
-        u = min(max(kink_u(own_kx[kink], own_kc[kink], own_kn[kink], s), box[0]), box[1])
-        v = s
-    elif edge == EDGE_TOE or edge == EDGE_HEEL:
-        u = s
-        v = box[2] if edge == EDGE_TOE else box[3]
-    else:
-        u = box[0] if edge == EDGE_ROOT else box[1]
-        v = s
+    u, v = edge_point(edge, kink, own_kx, own_kc, own_kn, box, s)
     d = np.zeros(6)
     vec = np.empty((7, 3))
     flank_vector(own_kind, own_par, own_tx, own_ty, own_pc, own_kx, own_kc, own_kn,

@@ -2,7 +2,8 @@
 
 :func:`solve_tca` follows the mating point of two flanks (:mod:`.mating`, Newton per
 phase) along the pinion phases by continuation, and through edge-to-surface contact
-(:mod:`.edge_contact`) where the surface mating point leaves a flank. The types, the
+(:mod:`.edge_contact`) where the surface mating point leaves a flank or an edge touches
+before it (:mod:`.edge_screen`). The types, the
 constants and the errors of the TCA are in :mod:`.types`, the mating-point solver in
 :mod:`.mating` (their former names here are deprecated).
 
@@ -22,6 +23,7 @@ from ..deprecation import moved_names
 from ..geometry.kinematics import MeshKinematics
 from ..geometry.surface import Surface
 from .edge_contact import contact_state, inward_slope, pushes_forward, solve_edge_contact
+from .edge_screen import edge_first, leads
 from .edges import solver_boundary
 from .mating import solve_mating_point
 from .types import (ARCSEC_PER_RAD, EDGE_TE_LIMIT_ARCSEC, ContactGuess, EdgeContact,
@@ -56,7 +58,7 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
               *, start: ContactGuess, start_fixed: str = "phi1", tol_mm: float = 1e-10,
               max_iter: int = 40, max_step_rad: float | None = None,
               edges: bool = True, edge_te_limit_arcsec: float = EDGE_TE_LIMIT_ARCSEC,
-              progress: bool = False) -> TcaPath:
+              edge_check: bool = True, progress: bool = False) -> TcaPath:
     """TCA of one tooth pair over the mesh phases ``phi1_rad`` by continuation.
 
     The reference (mean) mating point is solved first from ``start`` with
@@ -90,6 +92,13 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
         parameter box early and end the path there). Default: no substeps.
     edges : bool
         Continue through edge-to-surface contact (default) or stop at the boundary.
+    edge_check : bool
+        With ``edges``: at every phase whose surface mating point lies inside both
+        flanks, ask whether an edge touches before it
+        (:func:`~gearcontact.tca.edge_screen.edge_first`) and keep the edge contact if
+        so; the surface point is then followed on beside the edge until it touches
+        first again or leaves a flank (default). False: edges only where the surface
+        point has left a flank.
     edge_te_limit_arcsec : float
         An edge contact whose TE0 lies more than this behind the path's first touch so
         far (its TE0 extreme) ends the path in that direction: it can carry only if the
@@ -122,8 +131,18 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
             return a if b is None else b
         return a if (a.phi2_rad >= b.phi2_rad) == forward else b
 
+    check = edges and edge_check
+    screen_memo: dict = {}      # the edge screen's Newton starts along the path
+
+    def checked(surface: MatingPoint) -> MatingPoint:
+        return edge_first(pinion, gear, kin, surface, forward=forward, tol_mm=tol_mm,
+                          memo=screen_memo)
+
     for direction, indices in ((+1, range(i0, phis.size)), (-1, range(i0 - 1, -1, -1))):
         prev, prev2 = ref, None
+        # the surface point (and its predecessor) while an edge that touched before it
+        # carries: it lay inside both flanks then and is followed on
+        shadow: tuple | None = None
         stopped: str | None = None
         best = 0.0                  # the path's first touch so far (TE0 extreme), arcsec
         for i in indices:
@@ -145,7 +164,9 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
                             prev2 = prev
                         prev = step
                         gap = phis[i] - prev.phi1_rad
-                    mp = step
+                    mp = checked(step) if check else step
+                    if mp is not step:
+                        shadow = (prev, prev2)
                 except (EdgeContact, TcaConvergenceError) as exc:
                     if isinstance(exc, EdgeContact):
                         where = exc.where
@@ -176,9 +197,25 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
                 edge = solve_edge_contact(pinion, gear, kin, phis[i], guess=prev.as_guess(),
                                           forward=forward, tol_mm=tol_mm)
                 surface = None
+                if shadow is not None:
+                    s_prev, s_prev2 = shadow
+                    shadow = None
+                    try:
+                        surface = solve_mating_point(
+                            pinion, gear, kin, _predict(s_prev, s_prev2, phis[i], kin.ratio),
+                            tol_mm=tol_mm, max_iter=max_iter)
+                    except (EdgeContact, TcaConvergenceError):
+                        pass    # it has left a flank: the edge mode below
+                    if surface is not None:
+                        mp = checked(surface)
+                        if edge is not None and leads(edge, mp, forward=forward):
+                            mp = edge
+                        if mp is not surface:
+                            shadow = (surface, s_prev)
                 # the flank behind the edge dips towards the other flank: the surface
                 # contact is back inside the flanks
-                if edge is None or inward_slope(pinion, gear, kin, edge) < 0.0:
+                if surface is None and (edge is None
+                                        or inward_slope(pinion, gear, kin, edge) < 0.0):
                     guess = replace(prev.as_guess(), phi1_rad=phis[i], phi2_rad=prev.phi2_rad
                                     + (phis[i] - prev.phi1_rad) / kin.ratio)
                     try:
@@ -186,7 +223,13 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
                                                      max_iter=max_iter)
                     except (EdgeContact, TcaConvergenceError):
                         pass
-                mp = first_touch(surface, edge)
+                    mp = first_touch(surface, edge)
+                    if check and mp is surface and surface is not None:
+                        mp = checked(surface)
+                        if mp is not surface:
+                            shadow = (surface, None)
+                elif surface is None:
+                    mp = edge
             if mp is None:
                 stopped = where
                 results[i] = MatingPoint.edge_phase(phis[i], stopped)
@@ -203,4 +246,45 @@ def solve_tca(pinion: Surface, gear: Surface, kin: MeshKinematics, phi1_rad,
                 prev2, prev = None, mp
             results[i] = replace(mp, te0_arcsec=te)
     bar.close()
+    if check:
+        _surface_returns(pinion, gear, kin, results, ref, checked=checked, forward=forward,
+                         tol_mm=tol_mm, max_iter=max_iter)
     return TcaPath(tuple(results), ref.phi1_rad, ref.phi2_rad, kin.ratio)
+
+
+def _is_surface(mp: MatingPoint) -> bool:
+    return not mp.edge and not mp.edge_contact
+
+
+def _surface_returns(pinion: Surface, gear: Surface, kin: MeshKinematics, results: list,
+                     ref: MatingPoint, *, checked, forward: bool, tol_mm: float,
+                     max_iter: int) -> None:
+    """Continue each surface stretch of a path into the edge (or contactless) phases next
+    to it, from its own end, against the sweep's direction too: a surface point inside
+    both flanks (checked for an edge touching before it, ``checked``) that touches
+    before the phase's edge contact replaces it, phase by phase, until one does not
+    (docs/machine_settings.md sec. 5, "The edge check while the surface contact is
+    inside"). ``results`` is edited in place."""
+    n = len(results)
+    for step in (+1, -1):
+        for i in range(n) if step > 0 else range(n - 1, -1, -1):
+            j, back = i + step, i - step
+            if not (0 <= j < n) or not _is_surface(results[i]) or _is_surface(results[j]):
+                continue
+            prev = results[i]
+            prev2 = results[back] if 0 <= back < n and _is_surface(results[back]) else None
+            while 0 <= j < n and not _is_surface(results[j]):
+                try:
+                    surface = solve_mating_point(
+                        pinion, gear, kin, _predict(prev, prev2, results[j].phi1_rad,
+                                                    kin.ratio), tol_mm=tol_mm,
+                        max_iter=max_iter)
+                except (EdgeContact, TcaConvergenceError):
+                    break
+                mp = checked(surface)
+                if not results[j].edge and not leads(mp, results[j], forward=forward):
+                    break
+                te = ((mp.phi2_rad - ref.phi2_rad) - (mp.phi1_rad - ref.phi1_rad) / kin.ratio)
+                results[j] = replace(mp, te0_arcsec=te * ARCSEC_PER_RAD)
+                prev2, prev = prev, surface
+                j += step
